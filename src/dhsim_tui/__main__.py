@@ -1,0 +1,5 @@
+"""``python -m dhsim_tui`` runs the same command line as ``dhsim``."""
+
+from dhsim_tui.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,165 @@
+"""Semantic checks shared by every way a robot or a joint vector is made.
+
+Each check raises :class:`DhsimError` naming the field as it appears in a
+robot file (``joints[3].alpha``; joints are numbered from 1, as on screen).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.model import (
+    AXES,
+    CONVENTIONS,
+    JOINT_TYPES,
+    MAX_ABS,
+    MAX_JOINTS,
+    MIN_JOINTS,
+    UNITS,
+)
+
+if TYPE_CHECKING:
+    from dhsim_tui.core.model import Joint, Robot
+
+
+def fmt(value: float) -> str:
+    """A number as people write it: ``431.8``, ``-90``, ``1e+06``."""
+    return f"{value:g}"
+
+
+def check_number(value: object, where: str) -> float:
+    """A finite number of sane size, as a float (bools are not numbers)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise DhsimError(f"{where}: expected a number, got {_describe(value)}")
+    if isinstance(value, numbers.Integral) and abs(int(value)) > MAX_ABS:
+        number = math.inf  # float() would overflow on a huge integer
+    else:
+        number = float(value)
+    if math.isnan(number):
+        raise DhsimError(f"{where}: NaN is not a number a robot can use")
+    if math.isinf(number) or abs(number) > MAX_ABS:
+        raise DhsimError(f"{where}: {_describe(value)} is out of range (|value| <= {MAX_ABS:g})")
+    return number
+
+
+def _describe(value: object) -> str:
+    if isinstance(value, str):
+        return f"the text {value!r}"
+    if isinstance(value, bool):
+        return f"the boolean {str(value).lower()}"
+    if isinstance(value, float | int):
+        return fmt(value)
+    if isinstance(value, list | tuple):
+        return "a list"
+    if isinstance(value, dict):
+        return "a table"
+    return type(value).__name__
+
+
+def check_choice(value: object, choices: Iterable[str], where: str) -> str:
+    options = tuple(choices)
+    if not isinstance(value, str) or value not in options:
+        listed = ", ".join(repr(c) for c in options)
+        raise DhsimError(f"{where}: {_describe(value)} is not one of {listed}")
+    return value
+
+
+def axis_vector(axis: str) -> tuple[int, int, int]:
+    """``'-y'`` -> ``(0, -1, 0)``."""
+    sign = 1 if axis[0] == "+" else -1
+    index = "xyz".index(axis[1])
+    vec = [0, 0, 0]
+    vec[index] = sign
+    return (vec[0], vec[1], vec[2])
+
+
+def perpendicular_axes(axis: str) -> tuple[str, ...]:
+    """The signed axes that may be paired with ``axis`` (for base_x given base_z)."""
+    return tuple(a for a in AXES if a[1] != axis[1])
+
+
+def check_joint(joint: Joint, number: int, units: str) -> None:
+    where = f"joints[{number}]"
+    check_choice(joint.type, JOINT_TYPES, f"{where}.type")
+    for name in ("theta", "d", "a", "alpha", "min", "max"):
+        check_number(getattr(joint, name), f"{where}.{name}")
+    unit = joint.unit(units)
+    if joint.min >= joint.max:
+        raise DhsimError(
+            f"{where}: min ({fmt(joint.min)}) must be less than max ({fmt(joint.max)})"
+        )
+    if not joint.min <= joint.home <= joint.max:
+        raise DhsimError(
+            f"{where}.{joint.variable}: home value {fmt(joint.home)} {unit} is outside "
+            f"the joint's limits {fmt(joint.min)}..{fmt(joint.max)} {unit}"
+        )
+
+
+def check_robot(robot: Robot) -> None:
+    """Raise :class:`DhsimError` on the first thing that makes ``robot`` invalid."""
+    if not isinstance(robot.name, str) or not robot.name.strip():
+        raise DhsimError("name: a robot needs a non-empty name")
+    if any(ord(ch) < 32 for ch in robot.name):
+        raise DhsimError("name: control characters are not allowed in a robot's name")
+    check_choice(robot.units, UNITS, "units")
+    check_choice(robot.convention, CONVENTIONS, "convention")
+    height = check_number(robot.base_height, "base_height")
+    if height < 0:
+        raise DhsimError(f"base_height: {fmt(height)} is below the floor; it must be >= 0")
+    check_choice(robot.base_z, AXES, "base_z")
+    check_choice(robot.base_x, AXES, "base_x")
+    if robot.base_z[1] == robot.base_x[1]:
+        raise DhsimError(
+            f"base_x: {robot.base_x!r} is parallel to base_z {robot.base_z!r}; "
+            f"choose one of {', '.join(perpendicular_axes(robot.base_z))}"
+        )
+    for key in ("xyz", "rpy"):
+        values = getattr(robot.tool, key)
+        if len(values) != 3:
+            raise DhsimError(f"tool.{key}: expected 3 numbers, got {len(values)}")
+        for i, v in enumerate(values, start=1):
+            check_number(v, f"tool.{key}[{i}]")
+    count = len(robot.joints)
+    if not MIN_JOINTS <= count <= MAX_JOINTS:
+        raise DhsimError(
+            f"joints: a robot has {MIN_JOINTS} to {MAX_JOINTS} joints, this one has {count}"
+        )
+    for number, joint in enumerate(robot.joints, start=1):
+        check_joint(joint, number, robot.units)
+    seen: set[str] = set()
+    for name, values in robot.poses:
+        where = f"poses.{name}"
+        if not isinstance(name, str) or not name.strip():
+            raise DhsimError("poses: a pose needs a non-empty name")
+        if name in seen:
+            raise DhsimError(f"{where}: the name is used twice")
+        seen.add(name)
+        check_joint_values(robot, values, where)
+
+
+def check_joint_values(robot: Robot, q: object, where: str = "q") -> tuple[float, ...]:
+    """A joint vector as floats: one finite number per joint, each within limits."""
+    if isinstance(q, str | bytes) or not isinstance(q, Iterable):
+        raise DhsimError(f"{where}: expected {robot.dof} joint values, got {_describe(q)}")
+    values = list(q)
+    if len(values) != robot.dof:
+        raise DhsimError(
+            f"{where}: expected {robot.dof} joint values ({', '.join(robot.labels)}), "
+            f"got {len(values)}"
+        )
+    out = []
+    for number, (joint, value) in enumerate(zip(robot.joints, values, strict=True), start=1):
+        label = joint.label(number)
+        v = check_number(value, f"{where}: {label}")
+        if not joint.min <= v <= joint.max:
+            unit = joint.unit(robot.units)
+            raise DhsimError(
+                f"{where}: {label} = {fmt(v)} {unit} is outside its limits "
+                f"{fmt(joint.min)}..{fmt(joint.max)} {unit}"
+            )
+        out.append(v)
+    return tuple(out)
