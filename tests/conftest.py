@@ -1,0 +1,90 @@
+"""Shared fixtures: the bundled robots and an independent FK written straight
+from the reference's formulas (plain 4×4 products), to check the core against."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from dhsim_tui.core import bundled_names, load_robot
+
+BUNDLED = bundled_names()
+
+
+def _rx(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+
+def _rz(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def _ry(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1.0]])
+
+
+def _trans(x, y, z):
+    m = np.eye(4)
+    m[:3, 3] = (x, y, z)
+    return m
+
+
+_AXIS = {
+    "+x": (1, 0, 0),
+    "-x": (-1, 0, 0),
+    "+y": (0, 1, 0),
+    "-y": (0, -1, 0),
+    "+z": (0, 0, 1),
+    "-z": (0, 0, -1),
+}
+
+
+def reference_frames(robot, q):
+    """Frames 0..n and the tool, by the reference's formulas (§1, §3)."""
+    x = np.array(_AXIS[robot.base_x], float)
+    z = np.array(_AXIS[robot.base_z], float)
+    m = np.eye(4)
+    m[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    frames = [m]
+    for joint, value in zip(robot.joints, q, strict=True):
+        theta = math.radians(value if joint.is_revolute else joint.theta)
+        d = joint.d if joint.is_revolute else value
+        alpha = math.radians(joint.alpha)
+        if robot.convention == "standard":
+            t = _rz(theta) @ _trans(0, 0, d) @ _trans(joint.a, 0, 0) @ _rx(alpha)
+        else:
+            t = _rx(alpha) @ _trans(joint.a, 0, 0) @ _rz(theta) @ _trans(0, 0, d)
+        m = m @ t
+        frames.append(m)
+    roll, pitch, yaw = (math.radians(v) for v in robot.tool.rpy)
+    tool = _trans(*robot.tool.xyz) @ _rz(yaw) @ _ry(pitch) @ _rx(roll)
+    frames.append(m @ tool)
+    return np.array(frames)
+
+
+def random_q(robot, rng, count=None):
+    low = np.array(robot.lower)
+    high = np.array(robot.upper)
+    shape = (robot.dof,) if count is None else (count, robot.dof)
+    return rng.uniform(low, high, size=shape)
+
+
+@pytest.fixture(params=BUNDLED)
+def bundled(request):
+    robot, _ = load_robot(request.param)
+    return robot
+
+
+@pytest.fixture
+def puma():
+    return load_robot("puma560")[0]
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(20101217)
