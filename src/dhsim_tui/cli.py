@@ -143,7 +143,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     robot, path = load_robot(args.robot)  # a bad robot is reported before any UI starts
     from dhsim_tui.app import run_app
 
-    return run_app(robot, path)
+    return run_app(robot, path, args.renderer)
 
 
 def _subparsers() -> dict[str, _Parser]:
@@ -166,7 +166,8 @@ def _subparsers() -> dict[str, _Parser]:
 
 
 MAIN_HELP = """\
-usage: dhsim [ROBOT]              open the simulator (default: the bundled Puma 560)
+usage: dhsim [ROBOT] [--renderer braille|plotext]
+                                 open the simulator (default: the bundled Puma 560)
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
        dhsim check ROBOT
        dhsim list
@@ -178,6 +179,7 @@ Run 'dhsim COMMAND --help' for a command's options."""
 def _main_parser() -> _Parser:
     parser = _Parser(prog="dhsim", add_help=False)
     parser.add_argument("robot", nargs="?", default=None)
+    parser.add_argument("--renderer", choices=("braille", "plotext"), default="braille")
     parser.set_defaults(func=cmd_run)
     return parser
 

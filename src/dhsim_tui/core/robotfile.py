@@ -136,6 +136,10 @@ def loads(text: str, source: str = "<robot>") -> Robot:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise RobotFileError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses into nested arrays and inline tables
+        raise RobotFileError(f"{source}: not valid TOML: nested too deeply") from None
+    except ValueError as exc:  # e.g. an integer of more than 4300 digits
+        raise RobotFileError(f"{source}: not valid TOML: {exc}") from None
     try:
         return robot_from_dict(data)
     except DhsimError as exc:
@@ -158,6 +162,10 @@ def load(path: str | os.PathLike[str]) -> Robot:
         raise RobotFileError(f"{path}: permission denied") from None
     except OSError as exc:
         raise RobotFileError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except RobotFileError:
+        raise
+    except ValueError as exc:  # e.g. a NUL byte in the path
+        raise RobotFileError(f"{path}: cannot read: {exc}") from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:

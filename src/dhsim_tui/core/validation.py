@@ -51,6 +51,8 @@ def _describe(value: object) -> str:
         return f"the text {value!r}"
     if isinstance(value, bool):
         return f"the boolean {str(value).lower()}"
+    if isinstance(value, int) and abs(value) > 1e300:
+        return "a huge integer"  # too large for a float, so for fmt()
     if isinstance(value, float | int):
         return fmt(value)
     if isinstance(value, list | tuple):

@@ -1,0 +1,54 @@
+"""Forward-kinematics speed on the Puma 560 (a benchmark, not a test).
+
+    python bench/fk.py
+
+Prints the median time of one end-effector pose, of one pose with every
+frame (what the views draw), and of a batch of 100,000 joint vectors.
+Targets: <= 10 us, <= 20 us and <= 50 ms.
+"""
+
+from __future__ import annotations
+
+import statistics
+import timeit
+
+import numpy as np
+
+from dhsim_tui.core import load_robot
+
+
+def median_seconds(fn, number: int, repeat: int = 15) -> float:
+    return statistics.median(timeit.repeat(fn, number=number, repeat=repeat)) / number
+
+
+def main() -> None:
+    robot, _ = load_robot("puma560")
+    kin = robot.kinematics
+    q = (0.0, 30.0, 45.0, 60.0, 90.0, 0.0)
+    qs = np.random.default_rng(1).uniform(robot.lower, robot.upper, size=(100_000, 6))
+    kin.batch(qs)  # warm up
+    rows = [
+        (
+            "single pose, end effector (state)",
+            median_seconds(lambda: kin.state(q), 20_000),
+            "us",
+            10,
+        ),
+        ("single pose, 4x4 matrix (pose)", median_seconds(lambda: kin.pose(q), 20_000), "us", None),
+        (
+            "single pose, all frames (frames)",
+            median_seconds(lambda: kin.frames(q), 20_000),
+            "us",
+            20,
+        ),
+        ("batch of 100,000 (batch)", median_seconds(lambda: kin.batch(qs), 1, repeat=9), "ms", 50),
+    ]
+    print(f"{'Puma 560 forward kinematics':<36}{'median':>10}   target")
+    for label, seconds, unit, target in rows:
+        value = seconds * (1e6 if unit == "us" else 1e3)
+        goal = f"<= {target} {unit}" if target else ""
+        print(f"{label:<36}{value:>7.2f} {unit}   {goal}")
+
+
+if __name__ == "__main__":
+    main()

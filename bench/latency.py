@@ -1,0 +1,116 @@
+"""Key-press-to-frame latency of the control screen (a benchmark, not a test).
+
+    python bench/latency.py [--presses 200] [--size 160x48] [--robot puma560]
+
+Drives the app headlessly, sends ``right`` the way Pilot does (a Key event
+through the driver), and times until the screen's next update has been
+composed: the app's ``_display`` hook is where Textual hands a finished
+frame to the terminal (headless, it writes nothing; we also turn the frame
+into terminal segments so that cost is counted). ``pilot.press`` + ``pause``
+would measure ~80 ms of sleeping instead. Also reports time to first frame
+and peak memory for a real ``dhsim`` start.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import statistics
+import subprocess
+import sys
+import time
+
+from textual import events
+
+from dhsim_tui.app import DhsimApp
+from dhsim_tui.core import load_robot
+
+
+async def measure(
+    robot_name: str, size: tuple[int, int], presses: int, renderer: str
+) -> list[float]:
+    robot, path = load_robot(robot_name)
+    app = DhsimApp(robot, path, renderer)
+    samples: list[float] = []
+    async with app.run_test(size=size) as pilot:
+        await pilot.pause()
+        frame = asyncio.Event()
+        original = app._display
+
+        def display(screen, renderable) -> None:
+            original(screen, renderable)
+            if renderable is not None:
+                list(renderable.render_segments(app.console))
+                frame.set()
+
+        app._display = display  # type: ignore[method-assign]
+        step_keys = ("right", "left")  # back and forth: never stopped by a limit
+        for i in range(presses):
+            await pilot.pause()
+            frame.clear()
+            key = step_keys[(i // 20) % 2]
+            start = time.perf_counter()
+            app.post_message(events.Key(key, None))
+            await asyncio.wait_for(frame.wait(), 5)
+            samples.append(time.perf_counter() - start)
+            if i == 0:  # the measured frames really are the key's effect
+                assert app.screen.q[0] == robot.home[0] + 1.0, app.screen.q
+    return samples
+
+
+def first_frame_and_memory(robot_name: str) -> tuple[float, float]:
+    """Start a fresh interpreter, run the app headless until its first frame."""
+    script = f"""
+import asyncio, resource, time
+t0 = time.perf_counter()
+from dhsim_tui.core import load_robot
+from dhsim_tui.app import DhsimApp
+async def main():
+    robot, path = load_robot({robot_name!r})
+    app = DhsimApp(robot, path)
+    done = asyncio.Event()
+    async with app.run_test(size=(160, 48)) as pilot:
+        original = app._display
+        def display(screen, renderable):
+            original(screen, renderable)
+            if renderable is not None:
+                done.set()
+        app._display = display
+        await asyncio.wait_for(done.wait(), 10)
+        first = time.perf_counter() - t0
+        await pilot.press("right", "right")
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(first, peak)
+asyncio.run(main())
+"""
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    ).stdout.split()
+    return float(out[0]), float(out[1])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--presses", type=int, default=200)
+    parser.add_argument("--size", default="160x48")
+    parser.add_argument("--robot", default="puma560")
+    parser.add_argument("--renderer", default="braille", choices=("braille", "plotext"))
+    args = parser.parse_args()
+    width, height = (int(v) for v in args.size.split("x"))
+    samples = asyncio.run(measure(args.robot, (width, height), args.presses, args.renderer))
+    ms = sorted(s * 1000 for s in samples)
+    p95 = ms[min(len(ms) - 1, round(0.95 * (len(ms) - 1)))]
+    first, peak = first_frame_and_memory(args.robot)
+    print(
+        f"{args.robot} at {width}x{height}, {args.renderer} views, {len(ms)} presses of right/left"
+    )
+    print(
+        f"  key -> composed frame   median {statistics.median(ms):6.1f} ms   "
+        f"p95 {p95:6.1f} ms   (target 16 / 33 ms)"
+    )
+    print(f"  time to first frame    {first * 1000:6.0f} ms   (target 1000 ms)")
+    print(f"  peak memory            {peak:6.0f} MB   (target 150 MB)")
+
+
+if __name__ == "__main__":
+    main()

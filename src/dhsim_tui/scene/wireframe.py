@@ -1,0 +1,71 @@
+"""The arm in 3-D: links, pedestal, floor and each joint frame's axes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dhsim_tui.core.model import Robot
+from dhsim_tui.core.workspace import WorkArea, reach, work_area
+
+#: a frame's axes are this fraction of the robot's reach long
+AXIS_FRACTION = 0.12
+#: each earlier frame at the same origin makes the next one's axes this much longer
+SHARED_ORIGIN_GROWTH = 0.5
+
+
+def axis_length(robot: Robot) -> float:
+    """Axis length scaled to the arm (the seed's fixed size was lost on big arms)."""
+    size = reach(robot)
+    return AXIS_FRACTION * size if size > 0 else robot.mm(50.0)
+
+
+@dataclass(frozen=True)
+class Wireframe:
+    """Everything drawn, in world coordinates (robot units).
+
+    ``axes[i, k]`` is the end of frame i's k-th axis (x, y, z) and
+    ``origins[i]`` its start; frames are 0..n, then the tool if it has one.
+    """
+
+    links: np.ndarray  # (m, 3) polyline through frame origins, base to tool
+    origins: np.ndarray  # (f, 3)
+    axes: np.ndarray  # (f, 3, 3)
+    end_effector: np.ndarray  # (3,)
+    pedestal: np.ndarray | None  # (2, 3) floor to frame 0, when base_height > 0
+    floor_z: float
+    area: WorkArea
+    below_floor: tuple[int, ...]  # frames whose origin is under the floor
+
+
+def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
+    """``frames`` is Kinematics.frames(q): (n + 2, 4, 4), frames 0..n and the tool."""
+    origins = frames[:, :3, 3]
+    n = robot.dof
+    drawn = frames if not robot.tool.is_identity else frames[: n + 1]
+    drawn_origins = drawn[:, :3, 3]
+    length = axis_length(robot)
+    tolerance = 1e-6 * max(length, 1e-12)
+    # how many earlier frames share each frame's origin
+    gaps = np.abs(drawn_origins[:, None, :] - drawn_origins[None, :, :]).max(axis=2)
+    shared = np.tril(gaps < tolerance, k=-1).sum(axis=1)
+    scale = length * (1.0 + SHARED_ORIGIN_GROWTH * shared)
+    # columns of each rotation are the axes; ends = origin + scale * axis
+    axes = drawn_origins[:, None, :] + scale[:, None, None] * drawn[:, :3, :3].transpose(0, 2, 1)
+    floor_z = -robot.base_height
+    pedestal = None
+    if robot.base_height > 0:
+        pedestal = np.array([[0.0, 0.0, floor_z], [0.0, 0.0, 0.0]])
+    links = origins if not robot.tool.is_identity else origins[: n + 1]
+    below = tuple(int(i) for i in np.nonzero(origins[: n + 1, 2] < floor_z - tolerance)[0])
+    return Wireframe(
+        links=links,
+        origins=drawn_origins,
+        axes=axes,
+        end_effector=origins[-1],
+        pedestal=pedestal,
+        floor_z=floor_z,
+        area=work_area(robot),
+        below_floor=below,
+    )

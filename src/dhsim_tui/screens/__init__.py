@@ -1,0 +1,1 @@
+"""Screens of the simulator: control (joints, pose, views), help, value entry."""

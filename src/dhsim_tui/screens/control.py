@@ -1,0 +1,390 @@
+"""The control screen: step joints with the keyboard, read the pose, see the arm.
+
+Data flows one way: a key changes the joint vector; the screen asks the core
+for the frames and the read-out, asks the scene layer for the projected
+views, and hands the results to the widgets, which only draw.
+"""
+
+from __future__ import annotations
+
+from textual import work
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Container, Vertical
+from textual.events import Resize
+from textual.reactive import reactive
+from textual.screen import Screen
+from textual.widgets import Footer, Static
+
+from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.jog import DEFAULT_STEP_LEVEL, REVOLUTE_STEPS_DEG, set_joint, step_size
+from dhsim_tui.core.kinematics import read_out
+from dhsim_tui.core.model import Robot
+from dhsim_tui.core.validation import check_number, fmt
+from dhsim_tui.scene import VIEWS, build_wireframe, project
+from dhsim_tui.screens.help import HelpScreen
+from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.widgets.arm_view import ArmView, PlotextArmView
+from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
+from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
+
+#: below this the screen shows a message instead of a layout
+MIN_SIZE = (60, 18)
+#: at and above this all three views are shown at once
+WIDE_SIZE = (120, 36)
+
+
+def parse_number(text: str) -> float:
+    """A number typed by a person: finite, of sane size; DhsimError otherwise."""
+    stripped = text.strip()
+    if not stripped:
+        raise DhsimError("type a number")
+    try:
+        value = float(stripped)
+    except ValueError:
+        raise DhsimError(f"{stripped!r} is not a number") from None
+    return check_number(value, "value")
+
+
+class ControlScreen(Screen):
+    """Joint stepping, home, poses, read-outs and the three views.
+
+    | Key | Action |
+    | :- | :- |
+    | up / down | Select a joint |
+    | left / right | Step the joint (shift: ten steps) |
+    | [ / ] | Smaller / larger step |
+    | enter | Type the joint's exact value |
+    | h / home | Every joint home (the D-H table's values) |
+    | p | Next named pose |
+    | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
+    | tab / 1 2 3 | Show the top, front or side view |
+    | ? | Help |
+    | q | Quit |
+    """
+
+    BINDINGS = [
+        Binding(
+            "up",
+            "select(-1)",
+            "Joint",
+            key_display="↑↓",
+            id="joint.prev",
+            tooltip="Select the previous joint",
+        ),
+        Binding(
+            "down",
+            "select(1)",
+            "Joint",
+            show=False,
+            id="joint.next",
+            tooltip="Select the next joint",
+        ),
+        Binding(
+            "left",
+            "step(-1)",
+            "Step",
+            key_display="←→",
+            id="joint.step_down",
+            tooltip="Step the selected joint down",
+        ),
+        Binding(
+            "right",
+            "step(1)",
+            "Step",
+            show=False,
+            id="joint.step_up",
+            tooltip="Step the selected joint up",
+        ),
+        Binding(
+            "shift+left",
+            "step(-10)",
+            "×10",
+            show=False,
+            id="joint.big_step_down",
+            tooltip="Ten steps down",
+        ),
+        Binding(
+            "shift+right",
+            "step(10)",
+            "×10",
+            show=False,
+            id="joint.big_step_up",
+            tooltip="Ten steps up",
+        ),
+        Binding(
+            "left_square_bracket",
+            "step_size(-1)",
+            "Step size",
+            key_display="[]",
+            id="step.smaller",
+            tooltip="Smaller step",
+        ),
+        Binding(
+            "right_square_bracket",
+            "step_size(1)",
+            "Step size",
+            show=False,
+            id="step.larger",
+            tooltip="Larger step",
+        ),
+        Binding(
+            "enter",
+            "enter_value",
+            "Set",
+            key_display="⏎",
+            id="joint.enter",
+            tooltip="Type the selected joint's exact value",
+        ),
+        Binding(
+            "h,home",
+            "home",
+            "Home",
+            id="robot.home",
+            tooltip="Send every joint home (the D-H table's values)",
+        ),
+        Binding("p", "next_pose", "Pose", id="robot.pose", tooltip="Go to the next named pose"),
+        Binding(
+            "v",
+            "readout",
+            "Read-out",
+            id="pose.readout",
+            tooltip="OAT, roll-pitch-yaw or the full transform",
+        ),
+        Binding("tab", "next_view", "View", id="view.next", tooltip="Show the next view"),
+        Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
+        Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
+        Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+        Binding(
+            "question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"
+        ),
+        Binding("q", "app.quit", "Quit", id="app.quit", tooltip="Quit dhsim"),
+    ]
+
+    q: reactive[tuple[float, ...]] = reactive(tuple, init=False, repaint=False)
+    selected: reactive[int] = reactive(0, init=False, repaint=False)
+    step_level: reactive[int] = reactive(DEFAULT_STEP_LEVEL, init=False, repaint=False)
+    readout: reactive[str] = reactive("oat", init=False, repaint=False)
+    view_index: reactive[int] = reactive(1, init=False, repaint=False)
+
+    def __init__(self, robot: Robot, renderer: str = "braille") -> None:
+        super().__init__()
+        self.robot = robot
+        self.renderer = renderer
+        self._pose_cursor = -1
+        self._said: tuple[str, bool] = ("", False)
+        self.set_reactive(ControlScreen.q, robot.home)
+
+    # -- layout -------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        robot = self.robot
+        with Container(id="layout"):
+            with Vertical(id="side-panel"):
+                panel = JointPanel(id="joints")
+                panel.border_title = f"{robot.name} · {robot.type_string}"
+                with panel:
+                    for i, (joint, value) in enumerate(
+                        zip(robot.joints, self.q, strict=True), start=1
+                    ):
+                        yield JointRow(i, joint, robot.units, value)
+                yield PosePanel(id="pose")
+                yield Static("", id="status")
+            with Container(id="views"):
+                view_class = PlotextArmView if self.renderer == "plotext" else ArmView
+                for view in VIEWS:
+                    yield view_class(view, id=f"view-{view.key}")
+                yield Static(self._legend(), id="legend")
+        yield Static("", id="too-small")
+        yield Footer()
+
+    def _legend(self) -> str:
+        return (
+            "[bold red]━[/] x  [bold green]━[/] y  [bold blue]━[/] z  "
+            "[bold magenta]◆[/] tool\n[dim]tab/1-3 view · ? help[/]"
+        )
+
+    def on_mount(self) -> None:
+        self._views = [self.view_widget(view.key) for view in VIEWS]
+        self._joints = self.query_one(JointPanel)
+        self._pose_panel = self.query_one(PosePanel)
+        self._joints.select(self.selected)
+        self._update_step_caption()
+        self._show_view_selection()
+        self._apply_size(self.app.size.width, self.app.size.height)
+        self._refresh_pose()
+
+    def on_resize(self, event: Resize) -> None:
+        self._apply_size(event.size.width, event.size.height)
+
+    def _apply_size(self, width: int, height: int) -> None:
+        too_small = width < MIN_SIZE[0] or height < MIN_SIZE[1]
+        self.set_class(too_small, "-too-small")
+        self.set_class(width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1], "-wide")
+        if too_small:
+            self.query_one("#too-small", Static).update(
+                f"Terminal too small: {width}×{height}.\n"
+                f"dhsim needs at least {MIN_SIZE[0]}×{MIN_SIZE[1]}. q quits."
+            )
+
+    # -- the one-way flow: q -> core -> scene -> widgets -----------------------
+    def _refresh_pose(self) -> None:
+        frames = self.robot.kinematics.frames(self.q)
+        self.pose = read_out(frames[-1])
+        wire = build_wireframe(self.robot, frames)
+        for view, widget in zip(VIEWS, self._views, strict=True):
+            widget.show(project(wire, view))
+        self._joints.show(self.q)
+        self._pose_panel.show(self.pose, self.readout, self.robot.units)
+
+    def view_widget(self, key: str) -> ArmView | PlotextArmView:
+        """The widget showing the ``top``, ``front`` or ``side`` view."""
+        return self.query_one(f"#view-{key}", ArmView | PlotextArmView)  # type: ignore[arg-type]
+
+    def watch_q(self) -> None:
+        self._refresh_pose()
+
+    def watch_readout(self) -> None:
+        self.query_one(PosePanel).show(self.pose, self.readout, self.robot.units)
+
+    def watch_selected(self) -> None:
+        self.query_one(JointPanel).select(self.selected)
+        self._update_step_caption()
+
+    def watch_step_level(self) -> None:
+        self._update_step_caption()
+
+    def watch_view_index(self) -> None:
+        self._show_view_selection()
+
+    def _show_view_selection(self) -> None:
+        for i, view in enumerate(VIEWS):
+            self.view_widget(view.key).set_class(i == self.view_index, "-selected")
+
+    def _update_step_caption(self) -> None:
+        joint = self.robot.joints[self.selected]
+        unit = joint.unit(self.robot.units)
+        step = step_size(self.robot, self.selected, self.step_level)
+        self.query_one(JointPanel).border_subtitle = f"step {fmt(step)} {unit}  [ ]"
+
+    def say(self, message: str, error: bool = False) -> None:
+        """One line under the panels: what just happened, or why nothing did."""
+        if (message, error) == self._said:
+            return
+        self._said = (message, error)
+        status = self.query_one("#status", Static)
+        status.set_class(error, "-error")
+        status.update(message, layout=False)
+
+    # -- actions ----------------------------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        """Grey out keys that can't do anything for this robot."""
+        if action == "next_pose" and not self.robot.pose_names:
+            return None
+        return True
+
+    def action_select(self, delta: int) -> None:
+        self.selected = (self.selected + delta) % self.robot.dof
+
+    def action_step(self, multiple: int) -> None:
+        index = self.selected
+        delta = multiple * step_size(self.robot, index, self.step_level)
+        self._move_to(index, self.q[index] + delta)
+
+    def _move_to(self, index: int, value: float) -> None:
+        joint = self.robot.joints[index]
+        label = joint.label(index + 1)
+        unit = joint.unit(self.robot.units)
+        move = set_joint(self.robot, self.q, index, value)
+        if move.limit is not None:
+            bound = joint.min if move.limit == "min" else joint.max
+            verb = "is at" if not move.moved else "stopped at"
+            self.say(f"{label} {verb} its {move.limit} limit, {fmt(bound)} {unit}", error=True)
+        else:
+            self.say("")
+        if move.moved:
+            self.q = move.q
+
+    def action_step_size(self, delta: int) -> None:
+        self.step_level = max(0, min(len(REVOLUTE_STEPS_DEG) - 1, self.step_level + delta))
+
+    def action_home(self) -> None:
+        self.q = self.robot.home
+        self._pose_cursor = -1
+        self.say("home")
+
+    def action_next_pose(self) -> None:
+        names = self.robot.pose_names
+        if not names:
+            self.say(f"{self.robot.name} has no named poses", error=True)
+            return
+        self._pose_cursor = (self._pose_cursor + 1) % len(names)
+        name = names[self._pose_cursor]
+        self.q = self.robot.pose(name)
+        self.say(f"pose {name} ({self._pose_cursor + 1}/{len(names)})")
+
+    def action_readout(self) -> None:
+        self.readout = READOUTS[(READOUTS.index(self.readout) + 1) % len(READOUTS)]
+
+    def action_next_view(self) -> None:
+        self.view_index = (self.view_index + 1) % len(VIEWS)
+
+    def action_view(self, index: int) -> None:
+        self.view_index = index
+
+    @work(exclusive=True, group="modal")
+    async def action_enter_value(self) -> None:
+        index = self.selected
+        joint = self.robot.joints[index]
+        label = joint.label(index + 1)
+        unit = joint.unit(self.robot.units)
+
+        def check(text: str) -> float:
+            value = parse_number(text)
+            if not joint.min <= value <= joint.max:
+                raise DhsimError(
+                    f"{fmt(value)} is outside {label}'s limits "
+                    f"{fmt(joint.min)}..{fmt(joint.max)} {unit}"
+                )
+            return value
+
+        hint = f"{fmt(joint.min)} .. {fmt(joint.max)} {unit} · enter sets · escape cancels"
+        value = await self.app.push_screen_wait(
+            ValueEntry(f"{label} ({unit})", fmt(self.q[index]), hint, check)
+        )
+        if value is not None:
+            self._move_to(index, value)
+
+    def action_help(self) -> None:
+        rows = [
+            ("↑ ↓", "select a joint"),
+            ("← →", "step the selected joint"),
+            ("shift+← →", "ten steps at once"),
+            (
+                "[ ]",
+                "smaller / larger step: "
+                + ", ".join(fmt(s) for s in REVOLUTE_STEPS_DEG)
+                + " deg; 0.1, 1, 10, 50, 100 mm",
+            ),
+            ("enter", "type the joint's exact value"),
+            ("h, home", "every joint home (the D-H table's values)"),
+            (
+                "p",
+                "next named pose"
+                + (
+                    f": {', '.join(self.robot.pose_names)}"
+                    if self.robot.pose_names
+                    else " (this robot has none)"
+                ),
+            ),
+            ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
+            ("tab, 1 2 3", "show the top, front or side view"),
+            ("?", "this help"),
+            ("q", "quit"),
+        ]
+        notes = (
+            "\nViews: red, green, blue = each joint frame's x, y, z axes; ◆ = the tool. "
+            "Both axes of a view have the same scale. Frames that share an origin "
+            "are drawn with longer axes.\nOAT (Unimation VAL): O = azimuth of the "
+            "approach vector, A = its depression below horizontal, T = roll about it."
+        )
+        self.app.push_screen(HelpScreen("Keys", rows, notes))

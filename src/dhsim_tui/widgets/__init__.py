@@ -1,0 +1,1 @@
+"""Widgets: they arrange and render what the screens hand them, never compute kinematics."""

@@ -1,0 +1,49 @@
+"""The pose panel: world XYZ and the orientation read-out, fixed-width numbers."""
+
+from __future__ import annotations
+
+from rich.text import Text
+from textual.widgets import Static
+
+from dhsim_tui.core.kinematics import EndEffector
+
+READOUTS = ("oat", "rpy", "matrix")
+READOUT_TITLES = {"oat": "XYZ / OAT", "rpy": "XYZ / roll pitch yaw", "matrix": "4×4 transform"}
+
+
+def _number(value: float, decimals: int = 2, width: int = 10) -> str:
+    return f"{round(value, decimals) + 0.0:{width}.{decimals}f}"
+
+
+def pose_text(pose: EndEffector, readout: str, units: str) -> Text:
+    """The read-out as text; pure so tests can compare it with ``dhsim fk``."""
+    text = Text()
+    if readout == "matrix":
+        for row in pose.matrix:
+            text.append(
+                "".join(_number(v, 4, 9) if i < 3 else _number(v, 2, 10) for i, v in enumerate(row))
+                + "\n"
+            )
+        text.append(f"rotation | position ({units})", style="dim")
+        return text
+    for name, value in zip("XYZ", pose.xyz, strict=True):
+        text.append(f"{name:>5} ", style="bold")
+        text.append(f"{_number(value)} {units}\n")
+    names = ("O", "A", "T") if readout == "oat" else ("roll", "pitch", "yaw")
+    angles = pose.oat if readout == "oat" else pose.rpy
+    for i, (name, value) in enumerate(zip(names, angles, strict=True)):
+        text.append(f"{name:>5} ", style="bold")
+        text.append(f"{_number(value)}°" + ("\n" if i < 2 else ""))
+    return text
+
+
+class PosePanel(Static):
+    """Shows what the screen hands it; computes nothing itself."""
+
+    DEFAULT_CSS = """
+    PosePanel { height: 8; }
+    """
+
+    def show(self, pose: EndEffector, readout: str, units: str) -> None:
+        self.border_title = READOUT_TITLES[readout]
+        self.update(pose_text(pose, readout, units), layout=False)
