@@ -50,6 +50,7 @@ class ViewScene:
     lines: tuple[Polyline, ...]
     end_effector: tuple[float, float]
     bounds: tuple[float, float, float, float]  # xmin, xmax, ymin, ymax
+    units: str = ""
     warnings: tuple[str, ...] = field(default=())
 
 
@@ -80,7 +81,7 @@ def project(wire: Wireframe, view: View) -> ViewScene:
     if wire.below_floor:
         frames = ", ".join(str(i) for i in wire.below_floor)
         warnings = (f"frame {frames} below the floor",)
-    return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), warnings)
+    return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), wire.units, warnings)
 
 
 def equal_scale_limits(

@@ -37,6 +37,7 @@ class Wireframe:
     floor_z: float
     area: WorkArea
     below_floor: tuple[int, ...]  # frames whose origin is under the floor
+    units: str = "mm"
 
 
 def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
@@ -68,4 +69,5 @@ def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
         floor_z=floor_z,
         area=work_area(robot),
         below_floor=below,
+        units=robot.units,
     )

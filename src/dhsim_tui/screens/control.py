@@ -117,6 +117,7 @@ class ControlScreen(Screen):
             "step_size(-1)",
             "Step size",
             key_display="[]",
+            show=False,
             id="step.smaller",
             tooltip="Smaller step",
         ),
@@ -199,8 +200,15 @@ class ControlScreen(Screen):
 
     def _legend(self) -> str:
         return (
-            "[bold red]━[/] x  [bold green]━[/] y  [bold blue]━[/] z  "
-            "[bold magenta]◆[/] tool\n[dim]tab/1-3 view · ? help[/]"
+            "[b]Frames[/]  [bold ansi_bright_red]━━[/] x   [bold ansi_bright_green]━━[/] y   "
+            "[bold ansi_bright_blue]━━[/] z   [bold ansi_bright_magenta]◆[/] tool\n"
+            "links ━━   pedestal [ansi_yellow]━━[/]   floor [ansi_bright_black]┄┄[/]\n\n"
+            "[b]Keys[/]\n"
+            "↑ ↓  joint          ← →  step (shift ×10)\n"
+            "[ ]  step size      ⏎    exact value\n"
+            "h    home           p    next pose\n"
+            "v    read-out       tab 1 2 3  view\n"
+            "?    help           q    quit"
         )
 
     def on_mount(self) -> None:

@@ -78,9 +78,12 @@ class ArmView(Widget):
         width, height = self.size
         if old is None or old.colours.shape != (height, width) or not self.is_mounted:
             self._raster = None
+            self._show_scale()
             self.refresh()
             return
         new = rasterize(scene, width, height)
+        if new.xlim != old.xlim or new.ylim != old.ylim:
+            self._show_scale()
         if new.palette != old.palette:
             changed = list(range(height))
         else:
@@ -100,6 +103,20 @@ class ArmView(Widget):
             self._strips = {}
             self._base_style = self.rich_style
         return self._raster
+
+    def _show_scale(self) -> None:
+        """The length of one terminal column, in the robot's unit, under the view."""
+        width, height = self.size
+        if self._scene is None or width < 2 or height < 2:
+            return
+        xlim, _ = equal_scale_limits(self._scene.bounds, width, height)
+        per_col = 2 * (xlim[1] - xlim[0]) / (2 * width - 1)
+        scale = f"1 col = {per_col:.3g} {self._scene.units}".rstrip()
+        if self.border_subtitle != scale:
+            self.border_subtitle = scale
+
+    def on_resize(self) -> None:
+        self._show_scale()
 
     def render_line(self, y: int) -> Strip:
         raster = self._current()

@@ -20,11 +20,8 @@ def pose_text(pose: EndEffector, readout: str, units: str) -> Text:
     text = Text()
     if readout == "matrix":
         for row in pose.matrix:
-            text.append(
-                "".join(_number(v, 4, 9) if i < 3 else _number(v, 2, 10) for i, v in enumerate(row))
-                + "\n"
-            )
-        text.append(f"rotation | position ({units})", style="dim")
+            text.append("".join(_number(v, 4, 8) for v in row[:3]) + _number(row[3], 2, 11) + "\n")
+        text.append(f"  rotation (3×3) | position ({units})", style="dim")
         return text
     for name, value in zip("XYZ", pose.xyz, strict=True):
         text.append(f"{name:>5} ", style="bold")

@@ -1,0 +1,51 @@
+"""Regenerate the README's screenshots from the real app (headless).
+
+    python screenshots/generate.py
+
+Each shot is (file name, robot, terminal size, keys pressed first).
+"""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+from dhsim_tui.app import DhsimApp
+from dhsim_tui.core import load_robot
+
+HERE = Path(__file__).resolve().parent
+
+SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
+    ("control-80x24", "puma560", (80, 24),
+     ("down", "right_square_bracket", "right_square_bracket", "right", "right", "right",
+      "down", "left", "left", "left", "down", "down", "right", "right")),
+    ("control-160x48", "puma560", (160, 48),
+     ("down", "right_square_bracket", "right_square_bracket", "right", "right", "right",
+      "down", "left", "left", "left", "down", "down", "right", "right")),
+    ("control-stanford-160x48", "stanford", (160, 48),
+     ("right_square_bracket", "right_square_bracket", "right", "right", "down", "down",
+      "right_square_bracket", "right", "right", "right")),
+    ("control-scara-pedestal-80x24", "scara_pedestal", (80, 24),
+     ("right_square_bracket", "right_square_bracket", "right", "right", "down", "left",
+      "left", "left")),
+    ("help-80x24", "puma560", (80, 24), ("question_mark",)),
+]
+
+
+async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[str, ...]) -> None:
+    robot, path = load_robot(robot_name)
+    app = DhsimApp(robot, path)
+    async with app.run_test(size=size) as pilot:
+        await pilot.press(*keys)
+        await pilot.pause()
+        app.save_screenshot(filename=f"{name}.svg", path=str(HERE))
+
+
+def main() -> None:
+    for shot in SHOTS:
+        asyncio.run(shoot(*shot))
+        print(f"screenshots/{shot[0]}.svg")
+
+
+if __name__ == "__main__":
+    main()
