@@ -9,8 +9,17 @@ from __future__ import annotations
 from pathlib import Path
 
 APP = Path(__file__).parent / "apps" / "control_app.py"
-MOVE = ("down", "right_square_bracket", "right_square_bracket", "right", "right", "down",
-        "left", "left", "left")
+MOVE = (
+    "down",
+    "right_square_bracket",
+    "right_square_bracket",
+    "right",
+    "right",
+    "down",
+    "left",
+    "left",
+    "left",
+)
 
 
 def test_control_80x24_home(snap_compare):
@@ -34,8 +43,9 @@ def test_help_80x24(snap_compare):
 
 
 def test_value_entry_with_an_error(snap_compare):
-    assert snap_compare(APP, press=("enter", "ctrl+u", "9", "9", "9", "enter"),
-                        terminal_size=(80, 24))
+    assert snap_compare(
+        APP, press=("enter", "ctrl+u", "9", "9", "9", "enter"), terminal_size=(80, 24)
+    )
 
 
 def test_too_small(snap_compare):
