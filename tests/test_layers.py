@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "dhsim_tui"
 UI_LIBRARIES = ("textual", "textual_plotext", "plotext", "rich")
 
@@ -29,8 +31,20 @@ def test_core_imports_no_ui_library():
     assert not loaded & set(UI_LIBRARIES), loaded & set(UI_LIBRARIES)
 
 
-def test_core_source_has_no_ui_imports():
-    for path in (PACKAGE / "core").rglob("*.py"):
+def test_scene_imports_no_ui_library():
+    loaded = _loaded_after(
+        "import dhsim_tui.core as c, dhsim_tui.scene as s\n"
+        "from dhsim_tui.scene.raster import rasterize\n"
+        "r, _ = c.load_robot('puma560')\n"
+        "w = s.build_wireframe(r, r.kinematics.frames(r.home))\n"
+        "rasterize(s.project(w, s.VIEWS[0]), 40, 20)\n"
+    )
+    assert not loaded & set(UI_LIBRARIES), loaded & set(UI_LIBRARIES)
+
+
+@pytest.mark.parametrize("layer", ["core", "scene"])
+def test_layer_source_has_no_ui_imports(layer):
+    for path in (PACKAGE / layer).rglob("*.py"):
         tree = ast.parse(path.read_text())
         for node in ast.walk(tree):
             names = []
