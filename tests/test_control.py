@@ -314,3 +314,20 @@ async def test_every_bundled_robot_opens_and_steps(bundled):
             await pilot.press("right", "down")
         await pilot.press("h")
         assert screen_of(app).q == bundled.home
+
+
+async def test_rows_scroll_to_keep_the_selected_joint_in_view():
+    from dhsim_tui.core import Joint, Robot
+
+    robot = Robot("long arm", tuple(Joint(a=50.0) for _ in range(20)))
+    app = DhsimApp(robot, None)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("up")  # wraps to joint 20
+        await pilot.pause()
+        panel = app.screen.query_one("#joints")
+        row = app.screen.query("JointRow")[19]
+        assert panel.scroll_y > 0
+        assert panel.region.contains_region(row.region)
+        await pilot.press("down")  # back to joint 1
+        await pilot.pause()
+        assert panel.scroll_y == 0
