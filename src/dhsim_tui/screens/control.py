@@ -20,11 +20,12 @@ from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.jog import DEFAULT_STEP_LEVEL, REVOLUTE_STEPS_DEG, set_joint, step_size
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
-from dhsim_tui.core.validation import check_number, fmt
-from dhsim_tui.scene import VIEWS, build_wireframe, project
+from dhsim_tui.core.editing import parse_number
+from dhsim_tui.core.validation import fmt
+from dhsim_tui.scene import VIEWS, build_wireframe
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.widgets.arm_view import ArmView, PlotextArmView
+from dhsim_tui.widgets.views_panel import ViewsPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
 
@@ -34,16 +35,14 @@ MIN_SIZE = (60, 18)
 WIDE_SIZE = (120, 36)
 
 
-def parse_number(text: str) -> float:
-    """A number typed by a person: finite, of sane size; DhsimError otherwise."""
-    stripped = text.strip()
-    if not stripped:
-        raise DhsimError("type a number")
-    try:
-        value = float(stripped)
-    except ValueError:
-        raise DhsimError(f"{stripped!r} is not a number") from None
-    return check_number(value, "value")
+KEYS_LEGEND = (
+    "[b]Keys[/]\n"
+    "↑ ↓  joint          ← →  step (shift ×10)\n"
+    "[ ]  step size      ⏎    exact value\n"
+    "h    home           p    next pose\n"
+    "v    read-out       tab 1 2 3  view\n"
+    "?    help           q    quit"
+)
 
 
 class ControlScreen(Screen):
@@ -190,34 +189,17 @@ class ControlScreen(Screen):
                         yield JointRow(i, joint, robot.units, value)
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
-            with Container(id="views"):
-                view_class = PlotextArmView if self.renderer == "plotext" else ArmView
-                for view in VIEWS:
-                    yield view_class(view, id=f"view-{view.key}")
-                yield Static(self._legend(), id="legend")
+            yield ViewsPanel(self.renderer, KEYS_LEGEND, id="views")
         yield Static("", id="too-small")
         yield Footer()
 
-    def _legend(self) -> str:
-        return (
-            "[b]Frames[/]  [bold ansi_bright_red]━━[/] x   [bold ansi_bright_green]━━[/] y   "
-            "[bold ansi_bright_blue]━━[/] z   [bold ansi_bright_magenta]◆[/] tool\n"
-            "links ━━   pedestal [ansi_yellow]━━[/]   floor [ansi_bright_black]┄┄[/]\n\n"
-            "[b]Keys[/]\n"
-            "↑ ↓  joint          ← →  step (shift ×10)\n"
-            "[ ]  step size      ⏎    exact value\n"
-            "h    home           p    next pose\n"
-            "v    read-out       tab 1 2 3  view\n"
-            "?    help           q    quit"
-        )
-
     def on_mount(self) -> None:
-        self._views = [self.view_widget(view.key) for view in VIEWS]
+        self._views = self.query_one(ViewsPanel)
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
         self._joints.select(self.selected)
         self._update_step_caption()
-        self._show_view_selection()
+        self._views.select(self.view_index)
         self._apply_size(self.app.size.width, self.app.size.height)
         self._refresh_pose()
 
@@ -238,15 +220,9 @@ class ControlScreen(Screen):
     def _refresh_pose(self) -> None:
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])
-        wire = build_wireframe(self.robot, frames)
-        for view, widget in zip(VIEWS, self._views, strict=True):
-            widget.show(project(wire, view))
+        self._views.show(build_wireframe(self.robot, frames))
         self._joints.show(self.q)
         self._pose_panel.show(self.pose, self.readout, self.robot.units)
-
-    def view_widget(self, key: str) -> ArmView | PlotextArmView:
-        """The widget showing the ``top``, ``front`` or ``side`` view."""
-        return self.query_one(f"#view-{key}", ArmView | PlotextArmView)  # type: ignore[arg-type]
 
     def watch_q(self) -> None:
         self._refresh_pose()
@@ -262,11 +238,7 @@ class ControlScreen(Screen):
         self._update_step_caption()
 
     def watch_view_index(self) -> None:
-        self._show_view_selection()
-
-    def _show_view_selection(self) -> None:
-        for i, view in enumerate(VIEWS):
-            self.view_widget(view.key).set_class(i == self.view_index, "-selected")
+        self._views.select(self.view_index)
 
     def _update_step_caption(self) -> None:
         joint = self.robot.joints[self.selected]
@@ -347,7 +319,7 @@ class ControlScreen(Screen):
         unit = joint.unit(self.robot.units)
 
         def check(text: str) -> float:
-            value = parse_number(text)
+            value = parse_number(text, label)
             if not joint.min <= value <= joint.max:
                 raise DhsimError(
                     f"{fmt(value)} is outside {label}'s limits "
