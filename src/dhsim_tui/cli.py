@@ -146,6 +146,22 @@ def cmd_run(args: argparse.Namespace) -> int:
     return run_app(robot, path, args.renderer)
 
 
+def cmd_edit(args: argparse.Namespace) -> int:
+    robot, path = load_robot(args.robot)
+    from dhsim_tui.app import run_app
+
+    return run_app(robot, path, start="edit")
+
+
+def cmd_new(args: argparse.Namespace) -> int:
+    from dhsim_tui.core.editing import new_robot
+
+    robot = new_robot(args.name.strip() or "new robot")  # checked before any UI starts
+    from dhsim_tui.app import run_app
+
+    return run_app(robot, None, start="new")
+
+
 def _subparsers() -> dict[str, _Parser]:
     fk = _Parser(prog="dhsim fk", description="Print the end-effector pose (world XYZ, OAT).")
     fk.add_argument("robot", help="a robot file or a bundled robot's name (see 'dhsim list')")
@@ -162,7 +178,13 @@ def _subparsers() -> dict[str, _Parser]:
     check.set_defaults(func=cmd_check)
     listing = _Parser(prog="dhsim list", description="List the bundled robots.")
     listing.set_defaults(func=cmd_list)
-    return {"fk": fk, "check": check, "list": listing}
+    edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
+    edit.add_argument("robot", help="a robot file or a bundled robot's name")
+    edit.set_defaults(func=cmd_edit)
+    new = _Parser(prog="dhsim new", description="Start a new robot in the table editor.")
+    new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
+    new.set_defaults(func=cmd_new)
+    return {"fk": fk, "check": check, "list": listing, "edit": edit, "new": new}
 
 
 MAIN_HELP = """\
@@ -171,6 +193,8 @@ usage: dhsim [ROBOT] [--renderer braille|plotext]
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
        dhsim check ROBOT
        dhsim list
+       dhsim edit ROBOT            the table editor
+       dhsim new [NAME]            a new robot in the table editor
 
 ROBOT is a robot file (.toml) or a bundled robot's name, e.g. puma560.
 Run 'dhsim COMMAND --help' for a command's options."""

@@ -141,13 +141,24 @@ def set_units(robot: Robot, units: str) -> Robot:
         return replace(j, **changes)
 
     poses = tuple(
-        (name, tuple(v if j.is_revolute else v * factor
-                     for j, v in zip(robot.joints, values, strict=True)))
+        (
+            name,
+            tuple(
+                v if j.is_revolute else v * factor
+                for j, v in zip(robot.joints, values, strict=True)
+            ),
+        )
         for name, values in robot.poses
     )
     tool = replace(robot.tool, xyz=tuple(v * factor for v in robot.tool.xyz))
-    return _rebuild(robot, units=units, joints=tuple(joint(j) for j in robot.joints),
-                    base_height=robot.base_height * factor, tool=tool, poses=poses)
+    return _rebuild(
+        robot,
+        units=units,
+        joints=tuple(joint(j) for j in robot.joints),
+        base_height=robot.base_height * factor,
+        tool=tool,
+        poses=poses,
+    )
 
 
 def set_convention(robot: Robot, convention: str) -> Robot:
@@ -176,8 +187,10 @@ def set_base_x(robot: Robot, axis: str) -> Robot:
 
 
 def set_tool(robot: Robot, xyz=None, rpy=None) -> Robot:
-    tool = Tool(xyz=tuple(xyz) if xyz is not None else robot.tool.xyz,
-                rpy=tuple(rpy) if rpy is not None else robot.tool.rpy)
+    tool = Tool(
+        xyz=tuple(xyz) if xyz is not None else robot.tool.xyz,
+        rpy=tuple(rpy) if rpy is not None else robot.tool.rpy,
+    )
     return _rebuild(robot, tool=tool)
 
 

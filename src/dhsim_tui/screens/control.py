@@ -16,18 +16,18 @@ from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
+from dhsim_tui.core.editing import parse_number
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.jog import DEFAULT_STEP_LEVEL, REVOLUTE_STEPS_DEG, set_joint, step_size
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
-from dhsim_tui.core.editing import parse_number
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene import VIEWS, build_wireframe
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.widgets.views_panel import ViewsPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
+from dhsim_tui.widgets.views_panel import ViewsPanel
 
 #: below this the screen shows a message instead of a layout
 MIN_SIZE = (60, 18)
@@ -41,7 +41,7 @@ KEYS_LEGEND = (
     "[ ]  step size      ⏎    exact value\n"
     "h    home           p    next pose\n"
     "v    read-out       tab 1 2 3  view\n"
-    "?    help           q    quit"
+    "e    edit table     ?    help      q quit"
 )
 
 
@@ -58,6 +58,7 @@ class ControlScreen(Screen):
     | p | Next named pose |
     | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
     | tab / 1 2 3 | Show the top, front or side view |
+    | e | Edit the robot in a table |
     | ? | Help |
     | q | Quit |
     """
@@ -155,6 +156,7 @@ class ControlScreen(Screen):
         Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
         Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
         Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+        Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table"),
         Binding(
             "question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"
         ),
@@ -334,6 +336,9 @@ class ControlScreen(Screen):
         if value is not None:
             self._move_to(index, value)
 
+    def action_edit(self) -> None:
+        self.app.action_edit()  # type: ignore[attr-defined]
+
     def action_help(self) -> None:
         rows = [
             ("↑ ↓", "select a joint"),
@@ -358,6 +363,7 @@ class ControlScreen(Screen):
             ),
             ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
             ("tab, 1 2 3", "show the top, front or side view"),
+            ("e", "edit the robot's D-H table"),
             ("?", "this help"),
             ("q", "quit"),
         ]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -13,12 +14,13 @@ from textual.widgets import Input, Label
 from dhsim_tui.core.errors import DhsimError
 
 
-class ValueEntry(ModalScreen[float | None]):
-    """Type a value, ``enter`` to accept, ``escape`` to cancel.
+class ValueEntry(ModalScreen[Any]):
+    """Type a value, ``enter`` to accept, ``escape`` to cancel (returns None).
 
-    ``check`` turns the text into a number or raises DhsimError with the
-    reason, which is shown under the input; the typed text is kept so it can
-    be fixed, and nothing changes until a valid value is accepted.
+    ``check`` turns the text into a value (a number, a name, a robot...) or
+    raises DhsimError with the reason, which is shown under the input; the
+    typed text is kept so it can be fixed, and nothing changes until a valid
+    value is accepted.
     """
 
     BINDINGS = [
@@ -41,7 +43,7 @@ class ValueEntry(ModalScreen[float | None]):
     ValueEntry #hint { color: $text-muted; }
     """
 
-    def __init__(self, title: str, value: str, hint: str, check: Callable[[str], float]) -> None:
+    def __init__(self, title: str, value: str, hint: str, check: Callable[[str], Any]) -> None:
         super().__init__()
         self._title = title
         self._value = value
