@@ -53,7 +53,7 @@ def _rebuild(robot: Robot, **changes) -> Robot:
 
 
 def _joints(robot: Robot, index: int, joint: Joint) -> tuple[Joint, ...]:
-    return robot.joints[:index] + (joint,) + robot.joints[index + 1 :]
+    return (*robot.joints[:index], joint, *robot.joints[index + 1 :])
 
 
 def set_joint_field(robot: Robot, index: int, name: str, value: float) -> Robot:
@@ -93,10 +93,9 @@ def insert_joint(robot: Robot, after: int) -> Robot:
         raise DhsimError(f"a robot has at most {MAX_JOINTS} joints")
     position = after + 1
     joint = Joint()
-    joints = robot.joints[:position] + (joint,) + robot.joints[position:]
+    joints = (*robot.joints[:position], joint, *robot.joints[position:])
     poses = tuple(
-        (name, values[:position] + (joint.home,) + values[position:])
-        for name, values in robot.poses
+        (name, (*values[:position], joint.home, *values[position:])) for name, values in robot.poses
     )
     return _rebuild(robot, joints=joints, poses=poses)
 
