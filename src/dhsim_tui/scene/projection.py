@@ -22,9 +22,10 @@ class View:
 
     @property
     def caption(self) -> str:
-        return f"{self.title}  {'XYZ'[self.right]}→ {'XYZ'[self.up]}↑"
+        return f"{self.title}  {'XYZ'[self.right]}→ {'XYZ'[self.up]}↑  ({VIEW_KEYS[self.key]})"
 
 
+VIEW_KEYS = {"top": "1", "front": "2", "side": "3"}
 VIEWS: tuple[View, ...] = (
     View("top", "Top", 0, 1),
     View("front", "Front", 0, 2),

@@ -152,7 +152,9 @@ class ControlScreen(Screen):
             id="pose.readout",
             tooltip="OAT, roll-pitch-yaw or the full transform",
         ),
-        Binding("tab", "next_view", "View", id="view.next", tooltip="Show the next view"),
+        Binding(
+            "tab", "next_view", "View", show=False, id="view.next", tooltip="Show the next view"
+        ),
         Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
         Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
         Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
