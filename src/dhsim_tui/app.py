@@ -46,10 +46,9 @@ class DhsimApp(App):
         self.start = start
         self.sub_title = robot.name
 
-    def get_default_screen(self) -> ControlScreen:
-        return ControlScreen(self.robot, self.renderer)
-
     def on_mount(self) -> None:
+        # pushed (not the default screen) so that switch_screen can replace it
+        self.push_screen(ControlScreen(self.robot, self.renderer))
         if self.start == "edit":
             self.open_editor(self.robot, self.robot_path)
         elif self.start == "new":

@@ -246,6 +246,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self.app.sub_title = f"{robot.name}{mark}"
         frames = robot.kinematics.frames(robot.home)
         self._preview.show(build_wireframe(robot, frames))
+        self.refresh_bindings()
 
     def say(self, message: str, error: bool = False) -> None:
         status = self.query_one("#editor-status", Static)
