@@ -287,8 +287,12 @@ def joints(draw) -> Joint:
     return Joint(joint_type, theta, d, fixed[1], fixed[2], low, high)
 
 
-# any printable-or-not text except ASCII control characters, which names forbid
-names = st.text(st.characters(min_codepoint=32), min_size=1, max_size=20).filter(str.strip)
+# any text a file can hold, except control characters, which names forbid
+names = st.text(
+    st.characters(min_codepoint=32, exclude_categories=("Cs",), exclude_characters="\x7f"),
+    min_size=1,
+    max_size=20,
+).filter(str.strip)
 
 
 @st.composite
@@ -303,7 +307,7 @@ def robots(draw) -> Robot:
         )
     else:
         tool = Tool()
-    pose_names = draw(st.lists(st.text(min_size=1, max_size=10), max_size=3, unique=True))
+    pose_names = draw(st.lists(names, max_size=3, unique=True))
     poses = []
     for pose_name in pose_names:
         assume(pose_name.strip())

@@ -822,3 +822,14 @@ def test_saved_file_is_utf8_with_unix_newlines(tmp_path):
     assert "Bra\u00e7o".encode() in raw
     assert b"\r" not in raw
     assert load(tmp_path / "arm.toml") == robot
+
+
+@pytest.mark.parametrize("name", ["\ud800", "bell\x07", "del\x7f"])
+def test_names_a_file_cannot_hold_are_rejected(name, tmp_path):
+    """Found by hypothesis: a lone surrogate got past validation and broke save()."""
+    from dhsim_tui.core import DhsimError, Joint, Robot
+
+    with pytest.raises(DhsimError, match="name"):
+        Robot(name, (Joint(),))
+    with pytest.raises(DhsimError, match="poses"):
+        Robot("ok", (Joint(),), poses=((name, (0.0,)),))

@@ -101,12 +101,21 @@ def check_joint(joint: Joint, number: int, units: str) -> None:
         )
 
 
+def check_text(value: str, where: str) -> None:
+    """Text a file can hold: encodable as UTF-8, no control characters."""
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError:
+        raise DhsimError(f"{where}: contains characters that are not valid text") from None
+    if any(ord(ch) < 32 or ord(ch) == 127 for ch in value):
+        raise DhsimError(f"{where}: control characters are not allowed")
+
+
 def check_robot(robot: Robot) -> None:
     """Raise :class:`DhsimError` on the first thing that makes ``robot`` invalid."""
     if not isinstance(robot.name, str) or not robot.name.strip():
         raise DhsimError("name: a robot needs a non-empty name")
-    if any(ord(ch) < 32 for ch in robot.name):
-        raise DhsimError("name: control characters are not allowed in a robot's name")
+    check_text(robot.name, "name")
     check_choice(robot.units, UNITS, "units")
     check_choice(robot.convention, CONVENTIONS, "convention")
     height = check_number(robot.base_height, "base_height")
@@ -137,6 +146,7 @@ def check_robot(robot: Robot) -> None:
         where = f"poses.{name}"
         if not isinstance(name, str) or not name.strip():
             raise DhsimError("poses: a pose needs a non-empty name")
+        check_text(name, f"poses.{name!r}")
         if name in seen:
             raise DhsimError(f"{where}: the name is used twice")
         seen.add(name)

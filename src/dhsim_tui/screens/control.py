@@ -177,6 +177,7 @@ class ControlScreen(Screen):
         self.renderer = renderer
         self._pose_cursor = -1
         self._said: tuple[str, bool] = ("", False)
+        self._ready = False
         self.set_reactive(ControlScreen.q, robot.home)
 
     # -- layout -------------------------------------------------------------
@@ -201,6 +202,7 @@ class ControlScreen(Screen):
         self._views = self.query_one(ViewsPanel)
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
+        self._ready = True
         self._joints.select(self.selected)
         self._update_step_caption()
         self._views.select(self.view_index)
@@ -222,6 +224,8 @@ class ControlScreen(Screen):
 
     # -- the one-way flow: q -> core -> scene -> widgets -----------------------
     def _refresh_pose(self) -> None:
+        if not self._ready:  # a key that arrived before the screen was mounted
+            return
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])
         self._views.show(build_wireframe(self.robot, frames))
@@ -232,16 +236,24 @@ class ControlScreen(Screen):
         self._refresh_pose()
 
     def watch_readout(self) -> None:
+        if not self._ready:
+            return
         self.query_one(PosePanel).show(self.pose, self.readout, self.robot.units)
 
     def watch_selected(self) -> None:
+        if not self._ready:
+            return
         self.query_one(JointPanel).select(self.selected)
         self._update_step_caption()
 
     def watch_step_level(self) -> None:
+        if not self._ready:
+            return
         self._update_step_caption()
 
     def watch_view_index(self) -> None:
+        if not self._ready:
+            return
         self._views.select(self.view_index)
 
     def _update_step_caption(self) -> None:
@@ -261,7 +273,9 @@ class ControlScreen(Screen):
 
     # -- actions ----------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        """Grey out keys that can't do anything for this robot."""
+        """Grey out keys that can't do anything for this robot (or yet)."""
+        if not self._ready:
+            return False
         if action == "next_pose" and not self.robot.pose_names:
             return None
         return True

@@ -157,7 +157,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self.template = path if is_bundled(path) else None
         self.saved: Robot | None = robot if path is not None else None
         self.renderer = renderer
-        self._said = ""
+        self._ready = False
 
     # -- state ------------------------------------------------------------------
     @property
@@ -184,6 +184,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
 
     def on_mount(self) -> None:
         self._preview = self.query_one(ViewsPanel)
+        self._ready = True
         self._apply_size(self.app.size.width, self.app.size.height)
         self.refresh_robot()
         self.query_one("#joints-table").focus()
@@ -246,7 +247,15 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self.app.sub_title = f"{robot.name}{mark}"
         frames = robot.kinematics.frames(robot.home)
         self._preview.show(build_wireframe(robot, frames))
-        self.refresh_bindings()
+        self._refresh_keys()
+
+    def _refresh_keys(self) -> None:
+        """Re-check which keys apply, only when that can have changed (the
+        footer rebuilds itself on every refresh_bindings)."""
+        state = (self.history.can_undo, self.history.can_redo, self._in_joints())
+        if state != getattr(self, "_key_state", None):
+            self._key_state = state
+            self.refresh_bindings()
 
     def say(self, message: str, error: bool = False) -> None:
         status = self.query_one("#editor-status", Static)
@@ -282,6 +291,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         return str(fields.coordinate_to_cell_key(Coordinate(fields.cursor_row, 0)).row_key.value)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if not self._ready:  # keys that arrive before the tables exist do nothing
+            return False
         if action in ("toggle_type", "move") and not self._in_joints():
             return None
         if action == "undo" and not self.history.can_undo:
@@ -291,7 +302,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         return True
 
     def on_descendant_focus(self) -> None:
-        self.refresh_bindings()
+        self._refresh_keys()
 
     # -- editing cells --------------------------------------------------------
     def on_data_table_cell_selected(self, event: DataTable.CellSelected) -> None:
