@@ -50,3 +50,19 @@ def test_value_entry_with_an_error(snap_compare):
 
 def test_too_small(snap_compare):
     assert snap_compare(APP, terminal_size=(50, 14))
+
+
+EDITOR = Path(__file__).parent / "apps" / "editor_app.py"
+
+
+def test_editor_80x24(snap_compare):
+    assert snap_compare(EDITOR, press=("down", "right", "right"), terminal_size=(80, 24))
+
+
+def test_editor_160x48(snap_compare):
+    assert snap_compare(EDITOR, press=("down", "right", "right"), terminal_size=(160, 48))
+
+
+def test_editor_rejected_value(snap_compare):
+    keys = ("right", "right", "enter", "ctrl+u", "2", "0", "0", "enter")
+    assert snap_compare(EDITOR, press=keys, terminal_size=(80, 24))

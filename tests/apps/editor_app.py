@@ -1,0 +1,10 @@
+"""The editor as a snapshot test loads it: the bundled Puma 560."""
+
+from dhsim_tui.app import DhsimApp
+from dhsim_tui.core import load_robot
+
+robot, path = load_robot("puma560")
+app = DhsimApp(robot, path, start="edit")
+
+if __name__ == "__main__":
+    app.run()
