@@ -91,10 +91,18 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
         ),
     ),
     ("help-80x24", "puma560", (80, 24), ("question_mark",)),
-    ("editor-80x24", "scara_pedestal", (80, 24), ("e", "down", "right", "right", "right",
-                                                  "right", "right")),
-    ("editor-160x48", "scara_pedestal", (160, 48), ("e", "down", "right", "right", "right",
-                                                    "right", "right")),
+    (
+        "editor-80x24",
+        "scara_pedestal",
+        (80, 24),
+        ("e", "down", "right", "right", "right", "right", "right"),
+    ),
+    (
+        "editor-160x48",
+        "scara_pedestal",
+        (160, 48),
+        ("e", "down", "right", "right", "right", "right", "right"),
+    ),
 ]
 
 

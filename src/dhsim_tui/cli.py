@@ -21,7 +21,9 @@ from dhsim_tui.core.validation import check_joint_values
 
 EXIT_USAGE = 2
 #: options whose value may start with a minus sign (``--q -10,20``)
-VALUE_OPTIONS = ("--q",)
+VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
+#: random restarts of `dhsim ik` after the first start fails (seeded: repeatable)
+IK_RESTARTS = 30
 
 
 class UsageError(Exception):
@@ -120,6 +122,56 @@ def cmd_fk(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_ik(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from dhsim_tui.core.ik import solve
+    from dhsim_tui.core.orientation import oat_matrix
+
+    robot, _ = load_robot(args.robot)
+    xyz = parse_values(args.xyz, "--xyz")
+    if len(xyz) != 3:
+        raise DhsimError(f"--xyz: expected 3 numbers X,Y,Z, got {len(xyz)}")
+    target = np.eye(4)
+    target[:3, 3] = xyz
+    if args.oat is not None:
+        oat = parse_values(args.oat, "--oat")
+        if len(oat) != 3:
+            raise DhsimError(f"--oat: expected 3 angles O,A,T, got {len(oat)}")
+        target[:3, :3] = oat_matrix(*oat)
+    start = robot.home
+    if args.start is not None:
+        start = check_joint_values(robot, parse_values(args.start, "--from"), "--from")
+    result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
+    if not result.success:
+        raise DhsimError(f"no solution for {robot.name}: {result.reason}")
+    pose = robot.kinematics.end_effector(result.q)
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "robot": robot.name,
+                    "units": robot.units,
+                    "q": list(result.q),
+                    "xyz": list(pose.xyz),
+                    "oat": list(pose.oat),
+                    "residual": result.residual,
+                    "position_error": result.position_error,
+                    "orientation_error": result.orientation_error,
+                }
+            )
+        )
+    else:
+        joints = "  ".join(
+            f"{label} {_round(v, 4):g}" for label, v in zip(robot.labels, result.q, strict=True)
+        )
+        print(
+            f"{robot.name}\nq  {joints}\nresidual {result.position_error:.2g} {robot.units}, "
+            f"{result.orientation_error:.2g} rad"
+        )
+    return 0
+
+
 def cmd_check(args: argparse.Namespace) -> int:
     robot, path = load_robot(args.robot)
     print(f"ok  {describe(robot)}  ({path})")
@@ -178,19 +230,31 @@ def _subparsers() -> dict[str, _Parser]:
     check.set_defaults(func=cmd_check)
     listing = _Parser(prog="dhsim list", description="List the bundled robots.")
     listing.set_defaults(func=cmd_list)
+    ik = _Parser(
+        prog="dhsim ik", description="Joint values that reach a pose (inverse kinematics)."
+    )
+    ik.add_argument("robot", help="a robot file or a bundled robot's name")
+    ik.add_argument("--xyz", required=True, metavar="X,Y,Z", help="target position (robot unit)")
+    ik.add_argument("--oat", metavar="O,A,T", help="target orientation (deg); default: any")
+    ik.add_argument(
+        "--from", dest="start", metavar="V1,V2,...", help="starting joint values; default: home"
+    )
+    ik.add_argument("--json", action="store_true", help="print one JSON object")
+    ik.set_defaults(func=cmd_ik)
     edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
     edit.add_argument("robot", help="a robot file or a bundled robot's name")
     edit.set_defaults(func=cmd_edit)
     new = _Parser(prog="dhsim new", description="Start a new robot in the table editor.")
     new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
     new.set_defaults(func=cmd_new)
-    return {"fk": fk, "check": check, "list": listing, "edit": edit, "new": new}
+    return {"fk": fk, "ik": ik, "check": check, "list": listing, "edit": edit, "new": new}
 
 
 MAIN_HELP = """\
 usage: dhsim [ROBOT] [--renderer braille|plotext]
                                  open the simulator (default: the bundled Puma 560)
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
+       dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--json]
        dhsim check ROBOT
        dhsim list
        dhsim edit ROBOT            the table editor
