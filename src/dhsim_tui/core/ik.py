@@ -183,9 +183,9 @@ def _why(
         for i in range(robot.dof)
         if np.isclose(x[i], problem.low[i]) or np.isclose(x[i], problem.high[i])
     ]
-    distance = f"closest {position_error:.4g} {robot.units}, {math.degrees(orientation_error):.3g} deg away"
+    turn = math.degrees(orientation_error)
+    distance = f"closest {position_error:.4g} {robot.units}, {turn:.3g} deg away"
     if at_limit:
-        return (
-            f"not reachable within the joint limits ({', '.join(at_limit)} at a limit; {distance})"
-        )
+        limits = ", ".join(at_limit)
+        return f"not reachable within the joint limits ({limits} at a limit; {distance})"
     return f"out of reach ({distance})"

@@ -55,3 +55,57 @@ def set_joint(robot: Robot, q: tuple[float, ...], index: int, value: float) -> M
 def step_joint(robot: Robot, q: tuple[float, ...], index: int, delta: float) -> Move:
     """Move one joint by ``delta``, stopping on its limit."""
     return set_joint(robot, q, index, q[index] + delta)
+
+
+#: Cartesian rows: world X, Y, Z (robot unit), then turns about the tool's own x, y, z (deg)
+CARTESIAN_ROWS = ("X", "Y", "Z", "Rx", "Ry", "Rz")
+#: a Cartesian step that would move any revolute joint further than this is a branch flip
+MAX_JOINT_JUMP_DEG = 30.0
+
+
+def cartesian_step_size(robot: Robot, row: int, level: int) -> float:
+    level = max(0, min(level, len(REVOLUTE_STEPS_DEG) - 1))
+    if row < 3:
+        return mm_to_unit(PRISMATIC_STEPS_MM[level], robot.units)
+    return REVOLUTE_STEPS_DEG[level]
+
+
+def cartesian_target(robot: Robot, q: tuple[float, ...], row: int, delta: float):
+    """The current tool pose moved ``delta`` along world X/Y/Z or turned about
+    the tool's own x/y/z axis."""
+    from dhsim_tui.core.orientation import rotx, roty, rotz
+
+    pose = robot.kinematics.pose(q)
+    if row < 3:
+        pose[row, 3] += delta
+    else:
+        pose[:3, :3] = pose[:3, :3] @ (rotx, roty, rotz)[row - 3](delta)
+    return pose
+
+
+@dataclass(frozen=True)
+class CartesianMove:
+    q: tuple[float, ...]
+    moved: bool
+    reason: str = ""
+
+
+def cartesian_move(robot: Robot, q: tuple[float, ...], target) -> CartesianMove:
+    """Follow ``target`` from ``q`` by inverse kinematics, continuously: no
+    restarts, so the arm never jumps to another branch; what can't be reached
+    moves nothing and says why."""
+    from dhsim_tui.core.ik import solve
+    from dhsim_tui.core.jacobian import dexterity
+
+    result = solve(robot, target, q, max_iter=40)
+    if not result.success:
+        if dexterity(robot, q).singular:
+            return CartesianMove(q, False, "singular here: that direction can't be followed")
+        return CartesianMove(q, False, result.reason)
+    jumps = [abs(a - b) for j, a, b in zip(robot.joints, result.q, q, strict=True) if j.is_revolute]
+    if jumps and max(jumps) > MAX_JOINT_JUMP_DEG:
+        return CartesianMove(
+            q, False, "the arm would flip to another branch; take a smaller step or move a joint"
+        )
+    new_q = tuple(round(v, DECIMALS) for v in result.q)
+    return CartesianMove(new_q, new_q != q)

@@ -1,0 +1,22 @@
+"""Smooth joint-space motion: a quintic blend (zero velocity and acceleration
+at both ends), sampled at whatever rate the screen draws."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+#: seconds a move takes (the issue: "about one second")
+DURATION = 1.0
+
+
+def quintic(fraction: float) -> float:
+    """0 -> 0, 1 -> 1, with zero first and second derivatives at both ends."""
+    t = min(max(fraction, 0.0), 1.0)
+    return t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+
+
+def interpolate(
+    start: Sequence[float], goal: Sequence[float], fraction: float
+) -> tuple[float, ...]:
+    s = quintic(fraction)
+    return tuple(a + (b - a) * s for a, b in zip(start, goal, strict=True))
