@@ -18,9 +18,10 @@ from dhsim_tui.widgets.arm_view import ArmView
 from dhsim_tui.widgets.pose_panel import PosePanel
 
 
-def make_app(name: str = "puma560", renderer: str = "braille") -> DhsimApp:
+def make_app(name: str = "puma560", renderer: str = "braille", animate: bool = False) -> DhsimApp:
+    """Motion is off unless a test is about motion, so moves land at once."""
     robot, path = load_robot(name)
-    return DhsimApp(robot, path, renderer)
+    return DhsimApp(robot, path, renderer, animate=animate)
 
 
 def screen_of(app: DhsimApp) -> ControlScreen:
@@ -308,7 +309,7 @@ async def test_plotext_renderer_draws_the_same_screen():
 
 
 async def test_every_bundled_robot_opens_and_steps(bundled):
-    app = DhsimApp(bundled, None)
+    app = DhsimApp(bundled, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         for _ in range(bundled.dof):
             await pilot.press("right", "down")
@@ -320,7 +321,7 @@ async def test_rows_scroll_to_keep_the_selected_joint_in_view():
     from dhsim_tui.core import Joint, Robot
 
     robot = Robot("long arm", tuple(Joint(a=50.0) for _ in range(20)))
-    app = DhsimApp(robot, None)
+    app = DhsimApp(robot, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("up")  # wraps to joint 20
         await pilot.pause()

@@ -8,9 +8,11 @@ from textual import work
 from textual.app import App
 
 from dhsim_tui.core import editing
+from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
+from dhsim_tui.core.robotfile import save
 from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.screens.editor import EditorScreen, is_bundled
 from dhsim_tui.screens.value_entry import ValueEntry
 
 
@@ -38,8 +40,10 @@ class DhsimApp(App):
         path: Path | None = None,
         renderer: str = "braille",
         start: str = "control",
+        animate: bool = True,
     ) -> None:
         super().__init__()
+        self.animate = animate
         self.robot = robot
         self.robot_path = path
         self.renderer = renderer
@@ -48,7 +52,7 @@ class DhsimApp(App):
 
     def on_mount(self) -> None:
         # pushed (not the default screen) so that switch_screen can replace it
-        self.push_screen(ControlScreen(self.robot, self.renderer))
+        self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
         if self.start == "edit":
             self.open_editor(self.robot, self.robot_path)
         elif self.start == "new":
@@ -81,7 +85,20 @@ class DhsimApp(App):
         if (robot, path) != (self.robot, self.robot_path):
             self.robot, self.robot_path = robot, path
             self.sub_title = robot.name
-            self.switch_screen(ControlScreen(robot, self.renderer))
+            self.switch_screen(ControlScreen(robot, self.renderer, self.animate))
+
+    def keep_robot(self, robot: Robot) -> Path | None:
+        """The simulator changed the robot (a saved pose): keep it, and write it
+        to its file when it has one of its own (bundled robots are templates)."""
+        self.robot = robot
+        path = self.robot_path
+        if path is None or is_bundled(path):
+            return None
+        try:
+            save(robot, path)
+        except DhsimError:
+            return None
+        return path
 
     async def action_quit(self) -> None:
         screen = self.screen

@@ -88,6 +88,15 @@ class _Problem:
         self.target = target
         self.position_only = position_only
 
+    def limit(self, x: np.ndarray) -> np.ndarray:
+        """Into the joint limits: a revolute joint past one limit takes the same
+        angle a turn away when that fits (wide-range joints), else it stops."""
+        turn = 2 * math.pi
+        over = self.revolute & (x > self.high) & (x - turn >= self.low)
+        under = self.revolute & (x < self.low) & (x + turn <= self.high)
+        x = np.where(over, x - turn, np.where(under, x + turn, x))
+        return np.clip(x, self.low, self.high)
+
     def user(self, x: np.ndarray) -> tuple[float, ...]:
         return tuple((x / self.to_internal).tolist())
 
@@ -124,7 +133,7 @@ def _descend(problem: _Problem, x: np.ndarray, max_iter: int, bias: float = DAMP
         e = error[problem.rows]
         damping = 0.5 * float(e @ e) + bias
         step = np.linalg.solve(jac.T @ jac + damping * eye, jac.T @ e)
-        x = np.clip(x + step, problem.low, problem.high)
+        x = problem.limit(x + step)
         frames, error = problem.evaluate(x)
     return x, error, max_iter, problem.converged(error)
 

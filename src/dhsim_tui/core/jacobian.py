@@ -113,8 +113,19 @@ def dexterity(
 ) -> Dexterity:
     if jac is None:
         jac = jacobian(robot, q if q is not None else robot.home)
-    rank = task_rank(robot)
-    sigma = np.linalg.svd(normalised(robot, jac), compute_uv=False)[:rank]
+    jac = normalised(robot, jac)
+    rows = controllable_rows(robot)
+    if robot.dof < rows.sum():
+        # fewer joints than directions it can move in (a planar arm: x, y and
+        # the turn): it positions the tool, so measure how well it positions
+        rows = rows.copy()
+        rows[3:] = False
+        rank = min(robot.dof, int(rows.sum()))
+    else:
+        rank = task_rank(robot)
+    sigma = np.linalg.svd(jac[rows], compute_uv=False)[:rank]
+    if len(sigma) < rank:
+        sigma = np.concatenate([sigma, np.zeros(rank - len(sigma))])
     manip = float(np.prod(sigma))
     condition = float(sigma[0] / sigma[-1]) if sigma[-1] > 1e-12 else float("inf")
     return Dexterity(manip, condition, rank)

@@ -73,9 +73,15 @@ def cartesian_step_size(robot: Robot, row: int, level: int) -> float:
 def cartesian_target(robot: Robot, q: tuple[float, ...], row: int, delta: float):
     """The current tool pose moved ``delta`` along world X/Y/Z or turned about
     the tool's own x/y/z axis."""
+    return move_pose(robot.kinematics.pose(q), row, delta)
+
+
+def move_pose(pose, row: int, delta: float):
+    """A copy of ``pose`` moved along world X/Y/Z (rows 0-2) or turned about
+    its own x/y/z axis (rows 3-5, degrees)."""
     from dhsim_tui.core.orientation import rotx, roty, rotz
 
-    pose = robot.kinematics.pose(q)
+    pose = pose.copy()
     if row < 3:
         pose[row, 3] += delta
     else:

@@ -68,7 +68,8 @@ def project(wire: Wireframe, view: View) -> ViewScene:
     ymin, ymax = area.limits(names[view.up])
     lines: list[Polyline] = []
     if view.up == 2:  # the floor, seen edge-on in the front and side views
-        lines.append(Polyline((xmin, xmax), (wire.floor_z, wire.floor_z), "gray"))
+        floor = "red" if wire.below_floor else "gray"  # something went through the floor
+        lines.append(Polyline((xmin, xmax), (wire.floor_z, wire.floor_z), floor))
     if wire.pedestal is not None and view.up == 2:
         lines.append(_line(wire.pedestal, view, "yellow"))
     lines.append(_line(wire.links, view, "default"))
@@ -81,7 +82,8 @@ def project(wire: Wireframe, view: View) -> ViewScene:
     warnings = ()
     if wire.below_floor:
         frames = ", ".join(str(i) for i in wire.below_floor)
-        warnings = (f"frame {frames} below the floor",)
+        plural = "s" if len(wire.below_floor) > 1 else ""
+        warnings = (f"frame{plural} {frames} below the floor",)
     return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), wire.units, warnings)
 
 

@@ -7,6 +7,8 @@ views, and hands the results to the widgets, which only draw.
 
 from __future__ import annotations
 
+import time
+
 from textual import work
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -16,21 +18,35 @@ from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
-from dhsim_tui.core.editing import parse_number
+from dhsim_tui.core import editing
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.jog import DEFAULT_STEP_LEVEL, REVOLUTE_STEPS_DEG, set_joint, step_size
+from dhsim_tui.core.jacobian import dexterity, jacobian_from_frames
+from dhsim_tui.core.jog import (
+    CARTESIAN_ROWS,
+    DEFAULT_STEP_LEVEL,
+    REVOLUTE_STEPS_DEG,
+    cartesian_move,
+    cartesian_step_size,
+    move_pose,
+    set_joint,
+    step_size,
+)
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
+from dhsim_tui.core.motion import DURATION, interpolate
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene import VIEWS, build_wireframe
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
 from dhsim_tui.widgets.views_panel import ViewsPanel
 
 #: below this the screen shows a message instead of a layout
 MIN_SIZE = (60, 18)
+#: Cartesian mode shows the pose panel too from this height on
+TALL_FOR_BOTH = 32
 #: at and above this all three views are shown at once
 WIDE_SIZE = (120, 36)
 
@@ -41,7 +57,9 @@ KEYS_LEGEND = (
     "[ ]  step size      ⏎    exact value\n"
     "h    home           p    next pose\n"
     "v    read-out       tab 1 2 3  view\n"
-    "e    edit table     ?    help      q quit"
+    "c    Cartesian      P    save pose\n"
+    "m    smooth motion  e    edit table\n"
+    "?    help           q    quit"
 )
 
 
@@ -58,6 +76,9 @@ class ControlScreen(Screen):
     | p | Next named pose |
     | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
     | tab / 1 2 3 | Show the top, front or side view |
+    | c | Joint <-> Cartesian jogging (X, Y, Z, turns about the tool axes) |
+    | P | Save the current joints as a named pose |
+    | m | Smooth motion on or off |
     | e | Edit the robot in a table |
     | ? | Help |
     | q | Quit |
@@ -148,7 +169,7 @@ class ControlScreen(Screen):
         Binding(
             "v",
             "readout",
-            "Read-out",
+            "Readout",
             id="pose.readout",
             tooltip="OAT, roll-pitch-yaw or the full transform",
         ),
@@ -158,6 +179,29 @@ class ControlScreen(Screen):
         Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
         Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
         Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+        Binding(
+            "c",
+            "cartesian",
+            "Cart",
+            id="mode.cartesian",
+            tooltip="Switch between joint and Cartesian jogging",
+        ),
+        Binding(
+            "P",
+            "save_pose",
+            "Save pose",
+            show=False,
+            id="robot.save_pose",
+            tooltip="Save the current joints as a named pose",
+        ),
+        Binding(
+            "m",
+            "toggle_motion",
+            "Motion",
+            show=False,
+            id="motion.toggle",
+            tooltip="Smooth moves to home and poses on or off",
+        ),
         Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table"),
         Binding(
             "question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"
@@ -170,11 +214,16 @@ class ControlScreen(Screen):
     step_level: reactive[int] = reactive(DEFAULT_STEP_LEVEL, init=False, repaint=False)
     readout: reactive[str] = reactive("oat", init=False, repaint=False)
     view_index: reactive[int] = reactive(1, init=False, repaint=False)
+    cartesian: reactive[bool] = reactive(False, init=False, repaint=False)
 
-    def __init__(self, robot: Robot, renderer: str = "braille") -> None:
+    def __init__(self, robot: Robot, renderer: str = "braille", animate: bool = True) -> None:
         super().__init__()
         self.robot = robot
         self.renderer = renderer
+        self.animate = animate
+        self.cartesian_row = 0
+        self._commanded = None  # the Cartesian target while jogging
+        self._animation = None
         self._pose_cursor = -1
         self._said: tuple[str, bool] = ("", False)
         self._ready = False
@@ -192,6 +241,7 @@ class ControlScreen(Screen):
                         zip(robot.joints, self.q, strict=True), start=1
                     ):
                         yield JointRow(i, joint, robot.units, value)
+                yield CartesianPanel(id="cartesian")
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
             yield ViewsPanel(self.renderer, KEYS_LEGEND, id="views")
@@ -202,6 +252,8 @@ class ControlScreen(Screen):
         self._views = self.query_one(ViewsPanel)
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
+        self._cartesian_panel = self.query_one(CartesianPanel)
+        self._cartesian_panel.border_title = "Cartesian (world XYZ, tool turns)"
         self._ready = True
         self._joints.select(self.selected)
         self._update_step_caption()
@@ -216,6 +268,7 @@ class ControlScreen(Screen):
         too_small = width < MIN_SIZE[0] or height < MIN_SIZE[1]
         self.set_class(too_small, "-too-small")
         self.set_class(width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1], "-wide")
+        self.set_class(height < TALL_FOR_BOTH, "-short")
         if too_small:
             self.query_one("#too-small", Static).update(
                 f"Terminal too small: {width}×{height}.\n"
@@ -228,17 +281,38 @@ class ControlScreen(Screen):
             return
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])
-        self._views.show(build_wireframe(self.robot, frames))
+        self.dexterity = dexterity(self.robot, jac=jacobian_from_frames(self.robot, frames))
+        wire = build_wireframe(self.robot, frames)
+        self._views.show(wire)
         self._joints.show(self.q)
-        self._pose_panel.show(self.pose, self.readout, self.robot.units)
+        self.warnings = ()
+        if wire.below_floor:
+            frames_text = ", ".join(str(i) for i in wire.below_floor)
+            self.warnings = (f"below the floor: frame {frames_text}",)
+        self._show_pose()
+
+    def _show_pose(self) -> None:
+        self._pose_panel.show(
+            self.pose, self.readout, self.robot.units, self.dexterity, self.warnings
+        )
+        if self.cartesian:
+            self._cartesian_panel.show(self.pose.xyz, self.cartesian_row, self.robot.units)
 
     def watch_q(self) -> None:
+        self._commanded = None  # any other move ends a Cartesian run (_jog sets it again)
         self._refresh_pose()
 
     def watch_readout(self) -> None:
         if not self._ready:
             return
-        self.query_one(PosePanel).show(self.pose, self.readout, self.robot.units)
+        self._show_pose()
+
+    def watch_cartesian(self) -> None:
+        if not self._ready:
+            return
+        self.set_class(self.cartesian, "-cartesian")
+        self._update_step_caption()
+        self._show_pose()
 
     def watch_selected(self) -> None:
         if not self._ready:
@@ -257,6 +331,12 @@ class ControlScreen(Screen):
         self._views.select(self.view_index)
 
     def _update_step_caption(self) -> None:
+        if self.cartesian:
+            row = self.cartesian_row
+            unit = self.robot.units if row < 3 else "deg"
+            step = cartesian_step_size(self.robot, row, self.step_level)
+            self._cartesian_panel.border_subtitle = f"step {fmt(step)} {unit}  [ ]"
+            return
         joint = self.robot.joints[self.selected]
         unit = joint.unit(self.robot.units)
         step = step_size(self.robot, self.selected, self.step_level)
@@ -281,9 +361,19 @@ class ControlScreen(Screen):
         return True
 
     def action_select(self, delta: int) -> None:
+        if self.cartesian:
+            self.cartesian_row = (self.cartesian_row + delta) % len(CARTESIAN_ROWS)
+            self._update_step_caption()
+            self._show_pose()
+            return
         self.selected = (self.selected + delta) % self.robot.dof
 
     def action_step(self, multiple: int) -> None:
+        if self.cartesian:
+            row = self.cartesian_row
+            delta = multiple * cartesian_step_size(self.robot, row, self.step_level)
+            self._jog(row, delta)
+            return
         index = self.selected
         delta = multiple * step_size(self.robot, index, self.step_level)
         self._move_to(index, self.q[index] + delta)
@@ -302,13 +392,71 @@ class ControlScreen(Screen):
         if move.moved:
             self.q = move.q
 
+    def _jog(self, row: int, delta: float) -> None:
+        """Move the tool; the joints follow by inverse kinematics from where they
+        are. Steps add up on the commanded pose, not on the reached one, so a
+        run of steps stays on its line instead of collecting solver residue."""
+        base = (
+            self._commanded if self._commanded is not None else self.robot.kinematics.pose(self.q)
+        )
+        target = move_pose(base, row, delta)
+        move = cartesian_move(self.robot, self.q, target)
+        if not move.moved:
+            self.say(f"{CARTESIAN_ROWS[row]}: {move.reason or 'no change'}", error=True)
+            return
+        self.say("")
+        self.q = move.q
+        self._commanded = target
+
+    def action_cartesian(self) -> None:
+        self.cartesian = not self.cartesian
+        self.say(
+            "Cartesian jogging: ↑↓ row, ←→ move the tool" if self.cartesian else "joint jogging"
+        )
+
     def action_step_size(self, delta: int) -> None:
         self.step_level = max(0, min(len(REVOLUTE_STEPS_DEG) - 1, self.step_level + delta))
 
     def action_home(self) -> None:
-        self.q = self.robot.home
         self._pose_cursor = -1
-        self.say("home")
+        self._go_to(self.robot.home, "home")
+
+    def _go_to(self, goal: tuple[float, ...], message: str) -> None:
+        """Straight to ``goal``, or a quintic move over about a second when
+        motion is on; any key interrupts it where it is."""
+        self._stop_motion()
+        self.say(message)
+        if not self.animate or goal == self.q:
+            self.q = goal
+            return
+        start, began = self.q, time.monotonic()
+
+        def tick() -> None:
+            fraction = (time.monotonic() - began) / DURATION
+            self.q = interpolate(start, goal, fraction) if fraction < 1 else goal
+            if fraction >= 1:
+                self._stop_motion()
+
+        self._animation = self.set_interval(1 / 30, tick)
+
+    def _stop_motion(self) -> bool:
+        if self._animation is None:
+            return False
+        self._animation.stop()
+        self._animation = None
+        return True
+
+    @property
+    def moving(self) -> bool:
+        return self._animation is not None
+
+    def on_key(self) -> None:
+        if self._stop_motion():
+            self.say("stopped")
+
+    def action_toggle_motion(self) -> None:
+        self.animate = not self.animate
+        self.say("smooth motion on" if self.animate else "smooth motion off")
 
     def action_next_pose(self) -> None:
         names = self.robot.pose_names
@@ -317,8 +465,7 @@ class ControlScreen(Screen):
             return
         self._pose_cursor = (self._pose_cursor + 1) % len(names)
         name = names[self._pose_cursor]
-        self.q = self.robot.pose(name)
-        self.say(f"pose {name} ({self._pose_cursor + 1}/{len(names)})")
+        self._go_to(self.robot.pose(name), f"pose {name} ({self._pose_cursor + 1}/{len(names)})")
 
     def action_readout(self) -> None:
         self.readout = READOUTS[(READOUTS.index(self.readout) + 1) % len(READOUTS)]
@@ -331,13 +478,16 @@ class ControlScreen(Screen):
 
     @work(exclusive=True, group="modal")
     async def action_enter_value(self) -> None:
+        if self.cartesian:
+            await self._enter_cartesian()
+            return
         index = self.selected
         joint = self.robot.joints[index]
         label = joint.label(index + 1)
         unit = joint.unit(self.robot.units)
 
         def check(text: str) -> float:
-            value = parse_number(text, label)
+            value = editing.parse_number(text, label)
             if not joint.min <= value <= joint.max:
                 raise DhsimError(
                     f"{fmt(value)} is outside {label}'s limits "
@@ -354,6 +504,45 @@ class ControlScreen(Screen):
 
     def action_edit(self) -> None:
         self.app.action_edit()  # type: ignore[attr-defined]
+
+    async def _enter_cartesian(self) -> None:
+        row = self.cartesian_row
+        name = CARTESIAN_ROWS[row]
+        if row < 3:
+            title, value = f"{name} target ({self.robot.units})", fmt(round(self.pose.xyz[row], 4))
+            hint = "where the tool should go, world coordinates"
+        else:
+            title, value, hint = f"{name} turn (deg)", "0", "turn the tool about its own axis"
+        target = await self.app.push_screen_wait(
+            ValueEntry(title, value, hint, lambda text: editing.parse_number(text, name))
+        )
+        if target is not None:
+            self._jog(row, target - self.pose.xyz[row] if row < 3 else target)
+
+    @work(exclusive=True, group="modal")
+    async def action_save_pose(self) -> None:
+        """Keep the current joints as a named pose, in the robot and its file."""
+        q = self.q
+
+        def check(text: str) -> Robot:
+            return editing.set_pose(self.robot, text, q)
+
+        robot = await self.app.push_screen_wait(
+            ValueEntry(
+                "save pose as",
+                f"pose{len(self.robot.poses) + 1}",
+                "a name; an existing pose of that name is replaced",
+                check,
+            )
+        )
+        if robot is None:
+            return
+        self.robot = robot
+        name = robot.pose_names[-1] if q == robot.pose(robot.pose_names[-1]) else "pose"
+        saved_to = self.app.keep_robot(robot)  # type: ignore[attr-defined]
+        where = f"saved in {saved_to}" if saved_to else "kept until you quit (e, ctrl+s saves)"
+        self.say(f"{name} {where}")
+        self.refresh_bindings()
 
     def action_help(self) -> None:
         rows = [
@@ -379,6 +568,9 @@ class ControlScreen(Screen):
             ),
             ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
             ("tab, 1 2 3", "show the top, front or side view"),
+            ("c", "joint ⇄ Cartesian jogging: X, Y, Z in the world, turns about the tool"),
+            ("P", "save the current joints as a named pose (and in the robot file)"),
+            ("m", "smooth moves to home and poses on/off (any key stops a move)"),
             ("e", "edit the robot's D-H table"),
             ("?", "this help"),
             ("q", "quit"),

@@ -15,8 +15,9 @@ LENGTH_DECIMALS = {"mm": 2, "cm": 3, "m": 4, "in": 3}
 def format_value(joint: Joint, value: float, units: str) -> str:
     """A joint value with its unit, fixed decimals so it doesn't jitter."""
     if joint.is_revolute:
-        return f"{value + 0.0:9.2f}°  "
-    return f"{value + 0.0:9.{LENGTH_DECIMALS[units]}f} {units:<2}"
+        return f"{round(value, 2) + 0.0:9.2f}°  "
+    decimals = LENGTH_DECIMALS[units]
+    return f"{round(value, decimals) + 0.0:9.{decimals}f} {units:<2}"
 
 
 def slider(joint: Joint, value: float, width: int) -> Text:

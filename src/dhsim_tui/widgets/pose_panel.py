@@ -5,6 +5,7 @@ from __future__ import annotations
 from rich.text import Text
 from textual.widgets import Static
 
+from dhsim_tui.core.jacobian import Dexterity
 from dhsim_tui.core.kinematics import EndEffector
 
 READOUTS = ("oat", "rpy", "matrix")
@@ -38,9 +39,39 @@ class PosePanel(Static):
     """Shows what the screen hands it; computes nothing itself."""
 
     DEFAULT_CSS = """
-    PosePanel { height: 8; }
+    PosePanel { height: 10; }
     """
 
-    def show(self, pose: EndEffector, readout: str, units: str) -> None:
+    def show(
+        self,
+        pose: EndEffector,
+        readout: str,
+        units: str,
+        dexterity: Dexterity | None = None,
+        warnings: tuple[str, ...] = (),
+    ) -> None:
         self.border_title = READOUT_TITLES[readout]
-        self.update(pose_text(pose, readout, units), layout=False)
+        text = pose_text(pose, readout, units)
+        text.append("\n")
+        text.append_text(health_text(dexterity, warnings))
+        self.update(text, layout=False)
+
+
+def health_text(dexterity: Dexterity | None, warnings: tuple[str, ...]) -> Text:
+    """Manipulability (warning colour near a singularity) and the floor check."""
+    text = Text()
+    if dexterity is not None:
+        text.append("    μ ", style="bold")
+        style = "bold red" if dexterity.singular else "yellow" if dexterity.near_singular else ""
+        note = (
+            "  singular"
+            if dexterity.singular
+            else "  near singular"
+            if (dexterity.near_singular)
+            else ""
+        )
+        text.append(f"{dexterity.manipulability:10.4f}{note}", style=style)
+    text.append("\n")
+    if warnings:
+        text.append("  ⚠ " + "; ".join(warnings), style="bold red")
+    return text
