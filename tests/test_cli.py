@@ -440,3 +440,45 @@ def test_scripting_commands_do_not_import_ui_libraries():
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "", f"UI libraries imported: {result.stdout.strip()}"
+
+
+# --- dhsim ik --------------------------------------------------------------
+
+
+def test_ik_reaches_the_papers_pose_and_fk_agrees(capsys):
+    code, out, err = run(capsys, "fk", "puma560", "--q", PAPER_Q, "--json")
+    fk = json.loads(out)
+    xyz = ",".join(repr(v) for v in fk["xyz"])
+    oat = ",".join(repr(v) for v in fk["oat"])
+    code, out, err = run(capsys, "ik", "puma560", "--xyz", xyz, "--oat", oat, "--json")
+    assert code == 0 and err == ""
+    answer = json.loads(out)
+    assert set(answer) >= {"q", "xyz", "oat", "residual"}
+    assert answer["residual"] < 1e-6
+    code, out, _ = run(capsys, "fk", "puma560", "--q", ",".join(map(repr, answer["q"])), "--json")
+    again = json.loads(out)
+    assert all(abs(a - b) < 1e-3 for a, b in zip(again["xyz"], fk["xyz"], strict=True))
+    assert all(abs(a - b) < 1e-4 for a, b in zip(again["oat"], fk["oat"], strict=True))
+
+
+def test_ik_position_only_plain_output(capsys):
+    code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0")
+    assert code == 0 and "Th1" in out and "Th2" in out and "residual" in out
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (("ik", "puma560", "--xyz", "5000,0,0"), "no solution for Puma 560: out of reach"),
+        (("ik", "planar2", "--xyz", "1,1,1"), "no solution"),
+        (("ik", "puma560", "--xyz", "1,2"), "--xyz: expected 3 numbers"),
+        (("ik", "puma560", "--xyz", "1,2,a"), "--xyz: item 3 ('a') is not a number"),
+        (("ik", "puma560", "--xyz", "1,2,3", "--oat", "1,2"), "--oat: expected 3 angles"),
+        (("ik", "puma560", "--xyz", "1,2,3", "--from", "0,0"), "--from: expected 6 joint"),
+        (("ik", "puma560"), "the following arguments are required: --xyz"),
+    ],
+)
+def test_ik_bad_input_exits_2_with_one_line(capsys, argv, message):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert message in err and len(err.strip().splitlines()) == 1

@@ -66,3 +66,7 @@ def test_editor_160x48(snap_compare):
 def test_editor_rejected_value(snap_compare):
     keys = ("right", "right", "enter", "ctrl+u", "2", "0", "0", "enter")
     assert snap_compare(EDITOR, press=keys, terminal_size=(80, 24))
+
+
+def test_control_cartesian_mode(snap_compare):
+    assert snap_compare(APP, press=("p", "p", "c", "down", "down"), terminal_size=(80, 24))

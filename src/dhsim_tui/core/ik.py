@@ -62,11 +62,8 @@ class IKResult:
     orientation_error: float
     iterations: int
     reason: str = ""
-
-    @property
-    def residual(self) -> float:
-        """Position error over the reach plus orientation error (dimensionless)."""
-        return self.position_error + self.orientation_error
+    #: the larger of position error / reach and orientation error (rad): dimensionless
+    residual: float = 0.0
 
 
 class _Problem:
@@ -181,7 +178,8 @@ def solve(
         and orientation_error <= ORIENTATION_TOL * 2
     )
     reason = "" if ok else _why(robot, problem, x, position_error, orientation_error)
-    return IKResult(ok, problem.user(x), position_error, orientation_error, total, reason)
+    residual = max(position_error / problem.scale, orientation_error)
+    return IKResult(ok, problem.user(x), position_error, orientation_error, total, reason, residual)
 
 
 def _why(
