@@ -463,7 +463,7 @@ def test_ik_reaches_the_papers_pose_and_fk_agrees(capsys):
 
 def test_ik_position_only_plain_output(capsys):
     code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0")
-    assert code == 0 and "Th1" in out and "Th2" in out and "residual" in out
+    assert code == 0 and err == "" and "Th1" in out and "Th2" in out and "residual" in out
 
 
 @pytest.mark.parametrize(
