@@ -96,28 +96,22 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
         "puma560",
         (160, 48),
         (
-            "m",
-            "down",
-            "right_square_bracket",
-            "right_square_bracket",
-            "right",
-            "right",
-            "right",
-            "down",
-            "left",
-            "left",
-            "left",
-            "left",
-            "left",
-            "down",
-            "down",
-            "right",
-            "right",
+            "p",
+            "p",
+            "p",
+            "p",
             "c",
             "right_square_bracket",
             "right",
             "right",
             "right",
+            "right",
+            "right",
+            "down",
+            "down",
+            "left",
+            "left",
+            "left",
         ),
     ),
     (
@@ -137,7 +131,7 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
 
 async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[str, ...]) -> None:
     robot, path = load_robot(robot_name)
-    app = DhsimApp(robot, path)
+    app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=size) as pilot:
         await pilot.press(*keys)
         await pilot.pause()

@@ -4,7 +4,7 @@ from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
 
 robot, path = load_robot("puma560")
-app = DhsimApp(robot, path, start="edit")
+app = DhsimApp(robot, path, start="edit", animate=False)
 
 if __name__ == "__main__":
     app.run()

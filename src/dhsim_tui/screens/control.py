@@ -7,11 +7,8 @@ views, and hands the results to the widgets, which only draw.
 
 from __future__ import annotations
 
-import time
-
 from textual import work
 from textual.app import ComposeResult
-from textual.binding import Binding
 from textual.containers import Container, Vertical
 from textual.events import Resize
 from textual.reactive import reactive
@@ -33,10 +30,11 @@ from dhsim_tui.core.jog import (
 )
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
-from dhsim_tui.core.motion import DURATION, interpolate
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene import VIEWS, build_wireframe
+from dhsim_tui.screens.control_keys import CONTROL_BINDINGS, HELP_NOTES, KEYS_LEGEND, help_rows
 from dhsim_tui.screens.help import HelpScreen
+from dhsim_tui.screens.motion import SmoothMotion
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
@@ -51,19 +49,7 @@ TALL_FOR_BOTH = 32
 WIDE_SIZE = (120, 36)
 
 
-KEYS_LEGEND = (
-    "[b]Keys[/]\n"
-    "↑ ↓  joint          ← →  step (shift ×10)\n"
-    "[ ]  step size      ⏎    exact value\n"
-    "h    home           p    next pose\n"
-    "v    read-out       tab 1 2 3  view\n"
-    "c    Cartesian      P    save pose\n"
-    "m    smooth motion  e    edit table\n"
-    "?    help           q    quit"
-)
-
-
-class ControlScreen(Screen):
+class ControlScreen(SmoothMotion, Screen):
     """Joint stepping, home, poses, read-outs and the three views.
 
     | Key | Action |
@@ -84,130 +70,7 @@ class ControlScreen(Screen):
     | q | Quit |
     """
 
-    BINDINGS = [
-        Binding(
-            "up",
-            "select(-1)",
-            "Joint",
-            key_display="↑↓",
-            id="joint.prev",
-            tooltip="Select the previous joint",
-        ),
-        Binding(
-            "down",
-            "select(1)",
-            "Joint",
-            show=False,
-            id="joint.next",
-            tooltip="Select the next joint",
-        ),
-        Binding(
-            "left",
-            "step(-1)",
-            "Step",
-            key_display="←→",
-            id="joint.step_down",
-            tooltip="Step the selected joint down",
-        ),
-        Binding(
-            "right",
-            "step(1)",
-            "Step",
-            show=False,
-            id="joint.step_up",
-            tooltip="Step the selected joint up",
-        ),
-        Binding(
-            "shift+left",
-            "step(-10)",
-            "×10",
-            show=False,
-            id="joint.big_step_down",
-            tooltip="Ten steps down",
-        ),
-        Binding(
-            "shift+right",
-            "step(10)",
-            "×10",
-            show=False,
-            id="joint.big_step_up",
-            tooltip="Ten steps up",
-        ),
-        Binding(
-            "left_square_bracket",
-            "step_size(-1)",
-            "Step size",
-            key_display="[]",
-            show=False,
-            id="step.smaller",
-            tooltip="Smaller step",
-        ),
-        Binding(
-            "right_square_bracket",
-            "step_size(1)",
-            "Step size",
-            show=False,
-            id="step.larger",
-            tooltip="Larger step",
-        ),
-        Binding(
-            "enter",
-            "enter_value",
-            "Set",
-            key_display="⏎",
-            id="joint.enter",
-            tooltip="Type the selected joint's exact value",
-        ),
-        Binding(
-            "h,home",
-            "home",
-            "Home",
-            id="robot.home",
-            tooltip="Send every joint home (the D-H table's values)",
-        ),
-        Binding("p", "next_pose", "Pose", id="robot.pose", tooltip="Go to the next named pose"),
-        Binding(
-            "v",
-            "readout",
-            "Readout",
-            id="pose.readout",
-            tooltip="OAT, roll-pitch-yaw or the full transform",
-        ),
-        Binding(
-            "tab", "next_view", "View", show=False, id="view.next", tooltip="Show the next view"
-        ),
-        Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
-        Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
-        Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
-        Binding(
-            "c",
-            "cartesian",
-            "Cart",
-            id="mode.cartesian",
-            tooltip="Switch between joint and Cartesian jogging",
-        ),
-        Binding(
-            "P",
-            "save_pose",
-            "Save pose",
-            show=False,
-            id="robot.save_pose",
-            tooltip="Save the current joints as a named pose",
-        ),
-        Binding(
-            "m",
-            "toggle_motion",
-            "Motion",
-            show=False,
-            id="motion.toggle",
-            tooltip="Smooth moves to home and poses on or off",
-        ),
-        Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table"),
-        Binding(
-            "question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"
-        ),
-        Binding("q", "app.quit", "Quit", id="app.quit", tooltip="Quit dhsim"),
-    ]
+    BINDINGS = CONTROL_BINDINGS
 
     q: reactive[tuple[float, ...]] = reactive(tuple, init=False, repaint=False)
     selected: reactive[int] = reactive(0, init=False, repaint=False)
@@ -421,43 +284,6 @@ class ControlScreen(Screen):
         self._pose_cursor = -1
         self._go_to(self.robot.home, "home")
 
-    def _go_to(self, goal: tuple[float, ...], message: str) -> None:
-        """Straight to ``goal``, or a quintic move over about a second when
-        motion is on; any key interrupts it where it is."""
-        self._stop_motion()
-        self.say(message)
-        if not self.animate or goal == self.q:
-            self.q = goal
-            return
-        start, began = self.q, time.monotonic()
-
-        def tick() -> None:
-            fraction = (time.monotonic() - began) / DURATION
-            self.q = interpolate(start, goal, fraction) if fraction < 1 else goal
-            if fraction >= 1:
-                self._stop_motion()
-
-        self._animation = self.set_interval(1 / 30, tick)
-
-    def _stop_motion(self) -> bool:
-        if self._animation is None:
-            return False
-        self._animation.stop()
-        self._animation = None
-        return True
-
-    @property
-    def moving(self) -> bool:
-        return self._animation is not None
-
-    def on_key(self) -> None:
-        if self._stop_motion():
-            self.say("stopped")
-
-    def action_toggle_motion(self) -> None:
-        self.animate = not self.animate
-        self.say("smooth motion on" if self.animate else "smooth motion off")
-
     def action_next_pose(self) -> None:
         names = self.robot.pose_names
         if not names:
@@ -545,40 +371,4 @@ class ControlScreen(Screen):
         self.refresh_bindings()
 
     def action_help(self) -> None:
-        rows = [
-            ("↑ ↓", "select a joint"),
-            ("← →", "step the selected joint"),
-            ("shift+← →", "ten steps at once"),
-            (
-                "[ ]",
-                "smaller / larger step: "
-                + ", ".join(fmt(s) for s in REVOLUTE_STEPS_DEG)
-                + " deg; 0.1, 1, 10, 50, 100 mm",
-            ),
-            ("enter", "type the joint's exact value"),
-            ("h, home", "every joint home (the D-H table's values)"),
-            (
-                "p",
-                "next named pose"
-                + (
-                    f": {', '.join(self.robot.pose_names)}"
-                    if self.robot.pose_names
-                    else " (this robot has none)"
-                ),
-            ),
-            ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
-            ("tab, 1 2 3", "show the top, front or side view"),
-            ("c", "joint ⇄ Cartesian jogging: X, Y, Z in the world, turns about the tool"),
-            ("P", "save the current joints as a named pose (and in the robot file)"),
-            ("m", "smooth moves to home and poses on/off (any key stops a move)"),
-            ("e", "edit the robot's D-H table"),
-            ("?", "this help"),
-            ("q", "quit"),
-        ]
-        notes = (
-            "\nViews: red, green, blue = each joint frame's x, y, z axes; ◆ = the tool. "
-            "Both axes of a view have the same scale. Frames that share an origin "
-            "are drawn with longer axes.\nOAT (Unimation VAL): O = azimuth of the "
-            "approach vector, A = its depression below horizontal, T = roll about it."
-        )
-        self.app.push_screen(HelpScreen("Keys", rows, notes))
+        self.app.push_screen(HelpScreen("Keys", help_rows(self.robot), HELP_NOTES))

@@ -1,0 +1,89 @@
+"""The editor's keys: bindings and the help table."""
+
+from __future__ import annotations
+
+from textual.binding import Binding
+
+EDITOR_BINDINGS = [
+    Binding(
+        "t",
+        "toggle_type",
+        "R/P",
+        id="edit.toggle_type",
+        tooltip="Make the joint prismatic or revolute",
+    ),
+    Binding(
+        "a,insert",
+        "add",
+        "Add",
+        id="edit.add",
+        tooltip="Add a joint after the cursor (a pose in the fields table)",
+    ),
+    Binding(
+        "d,delete",
+        "delete",
+        "Delete",
+        id="edit.delete",
+        tooltip="Delete the joint (or the pose) under the cursor",
+    ),
+    Binding(
+        "ctrl+up",
+        "move(-1)",
+        "Move",
+        key_display="^↑↓",
+        id="edit.move_up",
+        tooltip="Move the joint up",
+    ),
+    Binding(
+        "ctrl+down",
+        "move(1)",
+        "Move",
+        show=False,
+        id="edit.move_down",
+        tooltip="Move the joint down",
+    ),
+    Binding("ctrl+z", "undo", "Undo", key_display="^z", id="edit.undo", tooltip="Undo"),
+    Binding("ctrl+y", "redo", "Redo", key_display="^y", id="edit.redo", tooltip="Redo"),
+    Binding(
+        "ctrl+o", "open", "Open", key_display="^o", id="file.open", tooltip="Open a robot file"
+    ),
+    Binding(
+        "ctrl+s",
+        "save",
+        "Save",
+        key_display="^s",
+        id="file.save",
+        tooltip="Save the robot (atomically)",
+    ),
+    Binding("1", "preview(0)", "Top", show=False, id="preview.top", tooltip="Top view"),
+    Binding("2", "preview(1)", "Front", show=False, id="preview.front", tooltip="Front view"),
+    Binding("3", "preview(2)", "Side", show=False, id="preview.side", tooltip="Side view"),
+    Binding("question_mark", "help", "Help", key_display="?", id="edit.help", tooltip="Every key"),
+    Binding(
+        "escape",
+        "leave",
+        "Back",
+        key_display="esc",
+        id="edit.leave",
+        tooltip="Back to the simulator",
+    ),
+]
+
+EDITOR_HELP_ROWS = [
+    ("arrows", "move in the table"),
+    ("enter", "edit the cell or field under the cursor"),
+    ("t", "revolute <-> prismatic (the variable moves between theta and d)"),
+    ("a, insert", "add a joint after the cursor; in the fields table, a pose"),
+    ("d, delete", "delete the joint or pose (asks first)"),
+    ("ctrl+↑ ctrl+↓", "move the joint up or down"),
+    ("ctrl+z, ctrl+y", "undo, redo"),
+    ("ctrl+o, ctrl+s", "open a robot, save this one (atomic)"),
+    ("tab", "joints table <-> robot fields and poses"),
+    ("1 2 3", "preview: top, front, side"),
+    ("escape", "back to the simulator (asks about unsaved changes)"),
+]
+
+EDITOR_HELP_NOTES = (
+    "\nA joint's variable (theta for R, d for P, marked *) holds its home value "
+    "and must lie within min..max. A rejected value shows why and changes nothing."
+)
