@@ -134,7 +134,7 @@ async def test_save_pose_writes_the_robot_file(tmp_path):
     app = DhsimApp(load(file), file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right", "right", "P", "ctrl+u", *"mine", "enter")
-        assert "mine saved in" in status(app)
+        assert "pose mine saved in" in status(app)
         await pilot.press("h")
         await pilot.press(*["p"] * 5)  # the saved pose is last in the cycle
         assert screen(app).q == (2.0, 0, 0, 0, 0, 0)
@@ -176,3 +176,22 @@ async def test_any_key_interrupts_a_move_and_m_turns_motion_off():
         assert screen(app).q[0] == stopped  # it stays where it was stopped
         await pilot.press("m", "h")
         assert screen(app).q == app.robot.home  # at once
+
+
+async def test_save_pose_that_cannot_be_written_says_so(tmp_path, monkeypatch):
+    robot, _ = load_robot("gantry")
+    file = tmp_path / "gantry.toml"
+    save(robot, file)
+    before = file.read_bytes()
+    import os
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(os, "replace", refuse)
+    app = DhsimApp(load(file), file, animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right", "P", "ctrl+u", *"spot", "enter")
+        assert "pose spot kept in memory, but not saved" in status(app)
+        assert app.robot.pose("spot") == (501.0, 400.0, 300.0)
+    assert file.read_bytes() == before

@@ -8,7 +8,6 @@ from textual import work
 from textual.app import App
 
 from dhsim_tui.core import editing
-from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
 from dhsim_tui.core.robotfile import save
 from dhsim_tui.screens.control import ControlScreen
@@ -89,15 +88,13 @@ class DhsimApp(App):
 
     def keep_robot(self, robot: Robot) -> Path | None:
         """The simulator changed the robot (a saved pose): keep it, and write it
-        to its file when it has one of its own (bundled robots are templates)."""
+        to its file when it has one of its own (bundled robots are templates).
+        A failed save raises DhsimError; the robot is kept in memory either way."""
         self.robot = robot
         path = self.robot_path
         if path is None or is_bundled(path):
             return None
-        try:
-            save(robot, path)
-        except DhsimError:
-            return None
+        save(robot, path)
         return path
 
     async def action_quit(self) -> None:

@@ -350,10 +350,10 @@ class ControlScreen(SmoothMotion, Screen):
         """Keep the current joints as a named pose, in the robot and its file."""
         q = self.q
 
-        def check(text: str) -> Robot:
-            return editing.set_pose(self.robot, text, q)
+        def check(text: str) -> tuple[Robot, str]:
+            return editing.set_pose(self.robot, text, q), text.strip()
 
-        robot = await self.app.push_screen_wait(
+        answer = await self.app.push_screen_wait(
             ValueEntry(
                 "save pose as",
                 f"pose{len(self.robot.poses) + 1}",
@@ -361,13 +361,17 @@ class ControlScreen(SmoothMotion, Screen):
                 check,
             )
         )
-        if robot is None:
+        if answer is None:
             return
+        robot, name = answer
         self.robot = robot
-        name = robot.pose_names[-1] if q == robot.pose(robot.pose_names[-1]) else "pose"
-        saved_to = self.app.keep_robot(robot)  # type: ignore[attr-defined]
-        where = f"saved in {saved_to}" if saved_to else "kept until you quit (e, ctrl+s saves)"
-        self.say(f"{name} {where}")
+        try:
+            saved_to = self.app.keep_robot(robot)  # type: ignore[attr-defined]
+        except DhsimError as exc:
+            self.say(f"pose {name} kept in memory, but not saved: {exc}", error=True)
+        else:
+            where = f"saved in {saved_to}" if saved_to else "kept until you quit (e, ctrl+s saves)"
+            self.say(f"pose {name} {where}")
         self.refresh_bindings()
 
     def action_help(self) -> None:
