@@ -45,6 +45,8 @@ class DhsimApp(App):
         self.animate = animate
         self.robot = robot
         self.robot_path = path
+        #: the robot as its file holds it (a pose saved only in memory differs)
+        self.saved_robot: Robot | None = robot if path is not None else None
         self.renderer = renderer
         self.start = start
         self.sub_title = robot.name
@@ -53,7 +55,7 @@ class DhsimApp(App):
         # pushed (not the default screen) so that switch_screen can replace it
         self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
         if self.start == "edit":
-            self.open_editor(self.robot, self.robot_path)
+            self.open_editor(self.robot, self.robot_path, saved=self.saved_robot)
         elif self.start == "new":
             self.start_new_robot()
 
@@ -68,19 +70,23 @@ class DhsimApp(App):
                 _joint_count,
             )
         )
-        self.open_editor(editing.new_robot(self.robot.name, count or 1), None)
+        self.open_editor(editing.new_robot(self.robot.name, count or 1), None, saved=None)
 
-    def open_editor(self, robot: Robot, path: Path | None) -> None:
-        self.push_screen(EditorScreen(robot, path, self.renderer), self._editor_closed)
+    def open_editor(self, robot: Robot, path: Path | None, saved: Robot | None = None) -> None:
+        """The editor on ``robot``; ``saved`` is what its file holds (changes
+        against it count as unsaved)."""
+        editor = EditorScreen(robot, path, self.renderer, saved=saved)
+        self.push_screen(editor, self._editor_closed)
 
     def action_edit(self) -> None:
-        self.open_editor(self.robot, self.robot_path)
+        self.open_editor(self.robot, self.robot_path, saved=self.saved_robot)
 
     def _editor_closed(self, result: tuple[Robot, Path | None] | None) -> None:
         """After the editor: the simulator runs the saved robot."""
         if result is None:
             return
         robot, path = result
+        self.saved_robot = robot
         if (robot, path) != (self.robot, self.robot_path):
             self.robot, self.robot_path = robot, path
             self.sub_title = robot.name
@@ -95,13 +101,16 @@ class DhsimApp(App):
         if path is None or is_bundled(path):
             return None
         save(robot, path)
+        self.saved_robot = robot
         return path
 
     async def action_quit(self) -> None:
-        screen = self.screen
-        if isinstance(screen, EditorScreen) and screen.dirty:
-            self._quit_with_guard(screen)
-            return
+        """Quit, unless an editor anywhere on the stack has unsaved changes:
+        then ask (a dialog on top of the editor must not let them slip)."""
+        for screen in reversed(self.screen_stack):
+            if isinstance(screen, EditorScreen) and screen.dirty:
+                self._quit_with_guard(screen)
+                return
         self.exit()
 
     @work(exclusive=True, group="modal")

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from dhsim_tui import __version__
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.library import bundled_names, describe, load_robot
-from dhsim_tui.core.model import Robot
+from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
 from dhsim_tui.core.validation import check_joint_values
 
 EXIT_USAGE = 2
@@ -43,7 +43,8 @@ def _glue_negative_values(argv: list[str]) -> list[str]:
         if skip:
             skip = False
             continue
-        if arg in VALUE_OPTIONS and i + 1 < len(argv) and argv[i + 1].startswith("-"):
+        following = argv[i + 1] if i + 1 < len(argv) else ""
+        if arg in VALUE_OPTIONS and following[:1] == "-" and following[1:2] in "0123456789.":
             out.append(f"{arg}={argv[i + 1]}")
             skip = True
         else:
@@ -57,12 +58,17 @@ def parse_values(text: str, option: str) -> list[float]:
     values = []
     for number, item in enumerate(items, start=1):
         try:
+            if "_" in item:  # float() would read 1_0 as 10
+                raise ValueError
             value = float(item)
         except ValueError:
             shown = repr(item) if item else "an empty value"
             raise DhsimError(f"{option}: item {number} ({shown}) is not a number") from None
-        if not math.isfinite(value):
-            raise DhsimError(f"{option}: item {number} ({item}) is not a finite number")
+        if not math.isfinite(value) or abs(value) > MAX_ABS:
+            raise DhsimError(
+                f"{option}: item {number} ({item}) is not a finite number "
+                f"of sane size (|value| <= {MAX_ABS:g})"
+            )
         values.append(value)
     return values
 
@@ -87,13 +93,14 @@ def _row(a: str, b: str, c: str, unit: str = "") -> str:
 
 def format_fk(robot: Robot, q: Sequence[float]) -> str:
     pose = robot.kinematics.end_effector(q)
+    places = LENGTH_DECIMALS[robot.units]
     joints = "  ".join(f"{label} {v:g}" for label, v in zip(robot.labels, q, strict=True))
     return "\n".join(
         [
             robot.name,
             f"q  {joints}",
             _row("X", "Y", "Z", f"({robot.units})"),
-            _row(*(f"{_round(v):.2f}" for v in pose.xyz)),
+            _row(*(f"{_round(v, places):.{places}f}" for v in pose.xyz)),
             _row("O", "A", "T", "(deg)"),
             _row(*(f"{_round(v):.2f}" for v in pose.oat)),
         ]

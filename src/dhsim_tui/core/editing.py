@@ -34,6 +34,8 @@ def parse_number(text: str, what: str = "value") -> float:
     if not stripped:
         raise DhsimError(f"{what}: type a number")
     try:
+        if "_" in stripped:  # float() would read 1_0 as 10
+            raise ValueError
         value = float(stripped)
     except ValueError:
         raise DhsimError(f"{what}: {stripped!r} is not a number") from None
@@ -131,33 +133,41 @@ def set_units(robot: Robot, units: str) -> Robot:
     """Change the unit, converting every length so the arm keeps its size."""
     if units not in UNITS:
         raise DhsimError(f"units: {units!r} is not one of {', '.join(UNITS)}")
-    factor = UNITS[robot.units] / UNITS[units]
+    ratio = UNITS[robot.units] / UNITS[units]
+
+    def factor_of(value: float) -> float:
+        return _clean(value * ratio)
 
     def joint(j: Joint) -> Joint:
-        changes = {"d": j.d * factor, "a": j.a * factor}
+        changes = {"d": factor_of(j.d), "a": factor_of(j.a)}
         if not j.is_revolute:
-            changes |= {"min": j.min * factor, "max": j.max * factor}
+            changes |= {"min": factor_of(j.min), "max": factor_of(j.max)}
         return replace(j, **changes)
 
     poses = tuple(
         (
             name,
             tuple(
-                v if j.is_revolute else v * factor
+                v if j.is_revolute else factor_of(v)
                 for j, v in zip(robot.joints, values, strict=True)
             ),
         )
         for name, values in robot.poses
     )
-    tool = replace(robot.tool, xyz=tuple(v * factor for v in robot.tool.xyz))
+    tool = replace(robot.tool, xyz=tuple(factor_of(v) for v in robot.tool.xyz))
     return _rebuild(
         robot,
         units=units,
         joints=tuple(joint(j) for j in robot.joints),
-        base_height=robot.base_height * factor,
+        base_height=factor_of(robot.base_height),
         tool=tool,
         poses=poses,
     )
+
+
+def _clean(value: float) -> float:
+    """A converted length without float noise (304.8 mm -> 30.48 cm, not 30.480000000000004)."""
+    return float(f"{value:.12g}")
 
 
 def set_convention(robot: Robot, convention: str) -> Robot:

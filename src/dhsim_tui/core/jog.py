@@ -42,7 +42,7 @@ class Move:
 def set_joint(robot: Robot, q: tuple[float, ...], index: int, value: float) -> Move:
     """Set one joint, clamped into its limits."""
     joint = robot.joints[index]
-    clamped = round(min(max(value, joint.min), joint.max), DECIMALS)
+    clamped = min(max(round(value, DECIMALS), joint.min), joint.max)  # round, then clamp
     limit = None
     if value <= joint.min:
         limit = "min"
@@ -100,10 +100,29 @@ def cartesian_move(robot: Robot, q: tuple[float, ...], target) -> CartesianMove:
     """Follow ``target`` from ``q`` by inverse kinematics, continuously: no
     restarts, so the arm never jumps to another branch; what can't be reached
     moves nothing and says why."""
-    from dhsim_tui.core.ik import solve
-    from dhsim_tui.core.jacobian import dexterity
+    import numpy as np
 
-    result = solve(robot, target, q, max_iter=40)
+    from dhsim_tui.core.ik import rotation_error, solve
+    from dhsim_tui.core.jacobian import controllable_rows, dexterity, length_scale
+
+    rows = controllable_rows(robot)
+    # fewer joints than directions it can move in (a planar arm): it positions the tool
+    position_only = robot.dof < int(rows.sum())
+    current = robot.kinematics.pose(q)
+    change = np.concatenate(
+        [
+            (target[:3, 3] - current[:3, 3]) / length_scale(robot),
+            rotation_error(target[:3, :3], current[:3, :3]),
+        ]
+    )
+    if position_only:
+        rows = rows.copy()
+        rows[3:] = True  # orientation is let go, so any turn there is "not possible"
+        if np.abs(change[:3]).max() < 1e-12 and np.abs(change[3:]).max() > 1e-12:
+            return CartesianMove(q, False, "this arm only positions its tool; it can't turn it")
+    if np.abs(change[~rows]).max(initial=0.0) > 1e-9:
+        return CartesianMove(q, False, "the arm has no joint that moves the tool that way")
+    result = solve(robot, target, q, max_iter=40, position_only=position_only)
     if not result.success:
         if dexterity(robot, q).singular:
             return CartesianMove(q, False, "singular here: that direction can't be followed")

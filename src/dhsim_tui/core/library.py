@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 from dhsim_tui.core.errors import RobotFileError
@@ -34,7 +35,9 @@ def bundled_path(name: str) -> Path | None:
 
 def resolve(argument: str) -> Path:
     """A robot argument is an existing path or the name of a bundled robot."""
-    path = Path(argument).expanduser()
+    path = Path(argument)
+    with contextlib.suppress(RuntimeError):  # "~someone" with no such user: as written
+        path = path.expanduser()
     if path.exists():
         return path
     found = bundled_path(argument)

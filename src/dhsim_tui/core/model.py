@@ -26,6 +26,8 @@ UNITS: dict[str, float] = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
 AXES: tuple[str, ...] = ("+x", "-x", "+y", "-y", "+z", "-z")
 MIN_JOINTS = 1
 MAX_JOINTS = 32
+#: decimals shown for a length in each unit (about 0.01 mm); degrees get 2
+LENGTH_DECIMALS: dict[str, int] = {"mm": 2, "cm": 3, "m": 5, "in": 4}
 #: the largest magnitude any number may have (degrees or robot units)
 MAX_ABS = 1e6
 REVOLUTE_LIMIT_DEG = 180.0

@@ -152,6 +152,8 @@ def load(path: str | os.PathLike[str]) -> Robot:
     try:
         if path.is_dir():
             raise RobotFileError(f"{path}: is a folder, not a robot file")
+        if path.exists() and not path.is_file():
+            raise RobotFileError(f"{path}: is not a regular file (a device or a pipe?)")
         size = path.stat().st_size
         if size > MAX_FILE_BYTES:
             raise RobotFileError(f"{path}: {size} bytes is too large for a robot file")
@@ -213,12 +215,15 @@ def save(robot: Robot, path: str | os.PathLike[str]) -> Path:
     then renamed over ``path``. On any failure the old file is untouched."""
     path = Path(path)
     text = dumps(robot)
+    if path.is_symlink():  # write the file the link points to, keep the link
+        path = path.resolve()
     folder = path.parent if str(path.parent) else Path(".")
     if path.is_dir():
         raise RobotFileError(f"{path}: is a folder, not a robot file")
     tmp_name = None
     try:
         fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+        os.chmod(tmp_name, _mode_for(path))  # mkstemp makes it private (0600)
         with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
             handle.write(text)
             handle.flush()
@@ -237,6 +242,16 @@ def save(robot: Robot, path: str | os.PathLike[str]) -> Path:
             with contextlib.suppress(OSError):
                 os.unlink(tmp_name)
     return path
+
+
+def _mode_for(path: Path) -> int:
+    """Keep an existing file's permissions; a new file gets the usual 0666 & ~umask."""
+    try:
+        return path.stat().st_mode & 0o7777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask
 
 
 def _fsync_folder(folder: Path) -> None:

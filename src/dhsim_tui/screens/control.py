@@ -7,10 +7,12 @@ views, and hands the results to the widgets, which only draw.
 
 from __future__ import annotations
 
+from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
 from textual.events import Resize
+from textual.markup import escape
 from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
@@ -98,7 +100,7 @@ class ControlScreen(SmoothMotion, Screen):
         with Container(id="layout"):
             with Vertical(id="side-panel"):
                 panel = JointPanel(id="joints")
-                panel.border_title = f"{robot.name} · {robot.type_string}"
+                panel.border_title = escape(f"{robot.name} · {robot.type_string}")
                 with panel:
                     for i, (joint, value) in enumerate(
                         zip(robot.joints, self.q, strict=True), start=1
@@ -212,7 +214,7 @@ class ControlScreen(SmoothMotion, Screen):
         self._said = (message, error)
         status = self.query_one("#status", Static)
         status.set_class(error, "-error")
-        status.update(message, layout=False)
+        status.update(Text(message), layout=False)  # user text: never markup
 
     # -- actions ----------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:

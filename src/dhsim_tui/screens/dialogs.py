@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
+from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
@@ -36,8 +38,8 @@ class Confirm(ModalScreen[bool]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = self._title
-            yield Label(self._question)
+            box.border_title = escape(self._title)
+            yield Label(Text(self._question))
             yield Label("y yes · n no", classes="hint")
 
     def action_answer(self, yes: bool) -> None:
@@ -62,8 +64,8 @@ class Choice(ModalScreen[str | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = self._title
-            options = OptionList(*(Option(text, id=value) for value, text in self._choices))
+            box.border_title = escape(self._title)
+            options = OptionList(*(Option(Text(text), id=value) for value, text in self._choices))
             yield options
             yield Label(self._hint or "↑↓ choose · enter picks · escape cancels", classes="hint")
 
@@ -108,7 +110,9 @@ class SaveGuard(ModalScreen[str]):
     def compose(self) -> ComposeResult:
         with Vertical() as box:
             box.border_title = "Unsaved changes"
-            yield Label(f"{self._name} has changes that are not saved. Save before {self._doing}?")
+            yield Label(
+                Text(f"{self._name} has changes that are not saved. Save before {self._doing}?")
+            )
             yield Label("s save · d discard · escape stay", classes="hint")
 
     def action_answer(self, answer: str) -> None:

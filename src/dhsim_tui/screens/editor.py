@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
 from textual.coordinate import Coordinate
 from textual.events import Resize
+from textual.markup import escape
 from textual.screen import Screen
 from textual.widgets import DataTable, Footer, Static
 
@@ -85,12 +87,15 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
 
     BINDINGS = EDITOR_BINDINGS
 
-    def __init__(self, robot: Robot, path: Path | None, renderer: str = "braille") -> None:
+    def __init__(
+        self, robot: Robot, path: Path | None, renderer: str = "braille", saved: Robot | None = None
+    ) -> None:
+        """``saved`` is the robot as its file holds it (None: not saved anywhere)."""
         super().__init__()
         self.history = editing.History(robot)
         self.path = None if is_bundled(path) else path
         self.template = path if is_bundled(path) else None
-        self.saved: Robot | None = robot if path is not None else None
+        self.saved: Robot | None = saved
         self.renderer = renderer
         self._ready = False
 
@@ -158,7 +163,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             where = f"from bundled {self.template.name}"
         else:
             where = "not saved yet"
-        joints.border_title = f"{robot.name}{mark} · {robot.type_string} · {where}"
+        joints.border_title = escape(f"{robot.name}{mark} · {robot.type_string} · {where}")
         joints.border_subtitle = "* joint variable (home)"
         fields = self.query_one("#fields-table", DataTable)
         row = fields.cursor_row
@@ -174,9 +179,9 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             "tool_rpy": _numbers(robot.tool.rpy),
         }
         for key in FIELD_ROWS:
-            fields.add_row(FIELD_LABELS[key], values[key], key=key)
+            fields.add_row(FIELD_LABELS[key], Text(values[key]), key=key)
         for name, pose in robot.poses:
-            fields.add_row(f"pose {name}", _numbers(pose), key=f"pose:{name}")
+            fields.add_row(Text(f"pose {name}"), _numbers(pose), key=f"pose:{name}")
         fields.move_cursor(row=min(row, fields.row_count - 1))
         fields.border_title = "Robot · poses (a adds, d deletes)"
         self.app.sub_title = f"{robot.name}{mark}"
@@ -195,7 +200,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     def say(self, message: str, error: bool = False) -> None:
         status = self.query_one("#editor-status", Static)
         status.set_class(error, "-error")
-        status.update(message)
+        status.update(Text(message))  # user text: never markup
 
     def _apply(self, robot: Robot, message: str) -> None:
         if self.history.push(robot):

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from rich.table import Table
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import VerticalScroll
+from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Static
 
@@ -41,13 +43,13 @@ class HelpScreen(ModalScreen[None]):
         table.add_column(style="bold")
         table.add_column()
         for keys, text in self._rows:
-            table.add_row(keys, text)
+            table.add_row(Text(keys), Text(text))  # may hold pose names: never markup
         with VerticalScroll() as box:
-            box.border_title = self._title
+            box.border_title = escape(self._title)
             box.border_subtitle = "escape closes"
             yield Static(table)
             if self._notes:
-                yield Static(self._notes, classes="notes")
+                yield Static(Text(self._notes), classes="notes")
 
     def action_close(self) -> None:
         self.dismiss(None)

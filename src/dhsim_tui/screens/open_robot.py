@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
@@ -65,7 +67,7 @@ class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
             box.border_title = "Open a robot"
             yield OptionList(
                 *(
-                    Option(f"{path}  {summary(path)}", id=str(i))
+                    Option(Text(f"{path}  {summary(path)}"), id=str(i))
                     for i, path in enumerate(self._files)
                 )
             )
@@ -79,7 +81,7 @@ class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
         try:
             robot = load(path)
         except DhsimError as exc:
-            self.query_one("#error", Label).update(str(exc))
+            self.query_one("#error", Label).update(Text(str(exc)))
             return
         self.dismiss((robot, path))
 
@@ -93,7 +95,10 @@ class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
         if not text:
             self.query_one("#error", Label).update("type a path to a robot file")
             return
-        self._open(Path(text).expanduser())
+        path = Path(text)
+        with contextlib.suppress(RuntimeError):  # "~someone" with no such user: as typed
+            path = path.expanduser()
+        self._open(path)
 
     def action_cancel(self) -> None:
         self.dismiss(None)

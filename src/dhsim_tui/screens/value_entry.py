@@ -5,9 +5,11 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
+from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Input, Label
 
@@ -52,9 +54,9 @@ class ValueEntry(ModalScreen[Any]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = self._title
+            box.border_title = escape(self._title)
             yield Input(self._value, id="value", select_on_focus=True)
-            yield Label(self._hint, id="hint")
+            yield Label(Text(self._hint), id="hint")
             yield Label("", id="error")
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
@@ -62,7 +64,7 @@ class ValueEntry(ModalScreen[Any]):
         try:
             value = self._check(event.value)
         except DhsimError as exc:
-            self.query_one("#error", Label).update(str(exc))
+            self.query_one("#error", Label).update(Text(str(exc)))  # echoes user text
             return
         self.dismiss(value)
 

@@ -6,6 +6,7 @@ from rich.text import Text
 from textual.widgets import Static
 
 from dhsim_tui.core.jog import CARTESIAN_ROWS
+from dhsim_tui.core.model import LENGTH_DECIMALS
 
 ROW_TEXT = {"Rx": "turn about tool x", "Ry": "turn about tool y", "Rz": "turn about tool z"}
 
@@ -16,7 +17,8 @@ def cartesian_text(xyz: tuple[float, float, float], selected: int, units: str) -
         marker = "▶" if i == selected else " "
         style = "bold reverse" if i == selected else ""
         if i < 3:
-            line = f"{marker} {name:<3}{round(xyz[i], 2) + 0.0:11.2f} {units}"
+            places = LENGTH_DECIMALS[units]
+            line = f"{marker} {name:<3}{round(xyz[i], places) + 0.0:11.{places}f} {units}"
         else:
             line = f"{marker} {name:<3} {ROW_TEXT[name]}"
         text.append(line, style=style)

@@ -6,10 +6,7 @@ from rich.text import Text
 from textual.containers import VerticalScroll
 from textual.widgets import Static
 
-from dhsim_tui.core.model import Joint
-
-#: decimals shown for a length in each unit (degrees always get 2)
-LENGTH_DECIMALS = {"mm": 2, "cm": 3, "m": 4, "in": 3}
+from dhsim_tui.core.model import LENGTH_DECIMALS, Joint
 
 
 def format_value(joint: Joint, value: float, units: str) -> str:

@@ -7,6 +7,7 @@ from textual.widgets import Static
 
 from dhsim_tui.core.jacobian import Dexterity
 from dhsim_tui.core.kinematics import EndEffector
+from dhsim_tui.core.model import LENGTH_DECIMALS
 
 READOUTS = ("oat", "rpy", "matrix")
 READOUT_TITLES = {"oat": "XYZ / OAT", "rpy": "XYZ / roll pitch yaw", "matrix": "4×4 transform"}
@@ -26,7 +27,7 @@ def pose_text(pose: EndEffector, readout: str, units: str) -> Text:
         return text
     for name, value in zip("XYZ", pose.xyz, strict=True):
         text.append(f"{name:>5} ", style="bold")
-        text.append(f"{_number(value)} {units}\n")
+        text.append(f"{_number(value, LENGTH_DECIMALS[units], 11)} {units}\n")
     names = ("O", "A", "T") if readout == "oat" else ("roll", "pitch", "yaw")
     angles = pose.oat if readout == "oat" else pose.rpy
     for i, (name, value) in enumerate(zip(names, angles, strict=True)):
