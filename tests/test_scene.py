@@ -1,0 +1,92 @@
+"""The scene layer: equal scale on both axes, frame axes sized to the arm,
+pedestal, floor, and the braille raster."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from dhsim_tui.core import Joint, Robot, load_robot, reach
+from dhsim_tui.scene import VIEWS, build_wireframe, equal_scale_limits, project
+from dhsim_tui.scene.projection import Polyline, ViewScene
+from dhsim_tui.scene.raster import rasterize
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(40, 10), (80, 24), (30, 30), (57, 21), (2, 2)])
+@pytest.mark.parametrize("bounds", [(-1000, 1000, -672, 1064), (0, 1, 0, 50), (-5, 5, -5, 5)])
+def test_limits_give_both_axes_the_same_length_per_dot(cols, rows, bounds):
+    (x0, x1), (y0, y1) = equal_scale_limits(bounds, cols, rows)
+    per_x = (x1 - x0) / (2 * cols - 1)
+    per_y = (y1 - y0) / (4 * rows - 1)
+    assert per_x == pytest.approx(per_y)
+    assert x0 <= bounds[0] and x1 >= bounds[1] and y0 <= bounds[2] and y1 >= bounds[3]
+
+
+@pytest.mark.parametrize(("cols", "rows"), [(40, 12), (70, 20), (25, 40)])
+def test_a_100mm_link_is_as_long_across_as_it_is_up(cols, rows):
+    """Draw a horizontal and a vertical 100 mm segment: same number of dots."""
+    scene = ViewScene(
+        VIEWS[1],
+        (Polyline((0.0, 100.0), (0.0, 0.0), "red"), Polyline((300.0, 300.0), (0.0, 100.0), "blue")),
+        (1e9, 1e9),
+        (-400.0, 400.0, -400.0, 400.0),
+    )
+    raster = rasterize(scene, cols, rows)
+
+    def dots(colour: str) -> tuple[int, int]:
+        bits = [
+            (r, c, ord(ch) - 0x2800)
+            for r, line in enumerate(raster.lines)
+            for c, ch in enumerate(line)
+            if ch != " "
+        ]
+        xs, ys = [], []
+        for r, c, b in bits:
+            if raster.palette[raster.colours[r, c]] != colour:
+                continue
+            for k, (dy, dx) in enumerate(
+                [(0, 0), (1, 0), (2, 0), (0, 1), (1, 1), (2, 1), (3, 0), (3, 1)]
+            ):
+                if b & (1 << k):
+                    xs.append(2 * c + dx)
+                    ys.append(4 * r + dy)
+        return max(xs) - min(xs), max(ys) - min(ys)
+
+    across, flat = dots("red")
+    tall_x, up = dots("blue")
+    assert flat == 0 and tall_x == 0
+    assert abs(across - up) <= 1  # one dot of rounding at most
+
+
+def test_frame_axes_scale_with_the_arm_and_shared_origins_draw_longer():
+    puma, _ = load_robot("puma560")
+    wire = build_wireframe(puma, puma.kinematics.frames(puma.home))
+    lengths = np.linalg.norm(wire.axes - wire.origins[:, None, :], axis=2)
+    base = 0.12 * reach(puma)
+    assert lengths[0] == pytest.approx([base] * 3)
+    assert lengths[1] == pytest.approx([1.5 * base] * 3)  # frame 1 shares frame 0's origin
+    small = Robot("small", (Joint(a=10.0),))
+    small_wire = build_wireframe(small, small.kinematics.frames(small.home))
+    assert np.linalg.norm(small_wire.axes[0, 0] - small_wire.origins[0]) == pytest.approx(1.2)
+
+
+def test_pedestal_and_floor():
+    scara, _ = load_robot("scara_pedestal")
+    wire = build_wireframe(scara, scara.kinematics.frames(scara.home))
+    assert wire.floor_z == -250.0
+    assert np.allclose(wire.pedestal, [[0, 0, -250], [0, 0, 0]])
+    front = project(wire, VIEWS[1])
+    assert front.lines[0].colour == "gray" and front.lines[0].ys == (-250.0, -250.0)
+    assert front.lines[1].colour == "yellow"
+    assert not any(line.colour == "yellow" for line in project(wire, VIEWS[0]).lines)
+    assert wire.warnings == ()
+
+
+def test_frames_below_the_floor_turn_the_floor_red():
+    probe = Robot(
+        "probe", (Joint("prismatic", 0.0, 50.0, 0.0, 0.0, -400.0, 400.0),), base_z="-z", base_x="+x"
+    )
+    wire = build_wireframe(probe, probe.kinematics.frames(probe.home))
+    assert wire.below_floor == (1,)
+    assert wire.warnings == ("below the floor: frame 1",)
+    assert project(wire, VIEWS[1]).lines[0].colour == "red"
