@@ -15,48 +15,36 @@ from dhsim_tui.core import load_robot
 
 HERE = Path(__file__).resolve().parent
 
+#: Th2 to 45, Th3 to -45, Th5 to 30 in 15-degree steps
+MOVE = (
+    "down",
+    "right_square_bracket",
+    "right_square_bracket",
+    "right",
+    "right",
+    "right",
+    "down",
+    "left",
+    "left",
+    "left",
+    "down",
+    "down",
+    "right",
+    "right",
+)
+
 SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
     (
         "control-80x24",
         "puma560",
         (80, 24),
-        (
-            "down",
-            "right_square_bracket",
-            "right_square_bracket",
-            "right",
-            "right",
-            "right",
-            "down",
-            "left",
-            "left",
-            "left",
-            "down",
-            "down",
-            "right",
-            "right",
-        ),
+        MOVE,
     ),
     (
         "control-160x48",
         "puma560",
         (160, 48),
-        (
-            "down",
-            "right_square_bracket",
-            "right_square_bracket",
-            "right",
-            "right",
-            "right",
-            "down",
-            "left",
-            "left",
-            "left",
-            "down",
-            "down",
-            "right",
-            "right",
-        ),
+        MOVE,
     ),
     (
         "control-stanford-160x48",

@@ -19,7 +19,7 @@ from dhsim_tui.core.model import (
     Tool,
     default_limits,
 )
-from dhsim_tui.core.validation import check_number, fmt, perpendicular_axes
+from dhsim_tui.core.validation import check_number, perpendicular_axes
 
 JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max")
 #: fields whose numbers are lengths (converted when the unit changes)
@@ -283,7 +283,3 @@ class History:
     @property
     def can_redo(self) -> bool:
         return bool(self._redo)
-
-
-def describe_value(value: float) -> str:
-    return fmt(value)

@@ -45,15 +45,22 @@ def jacobian(robot: Robot, q: Sequence[float]) -> np.ndarray:
 def task_rank(robot: Robot) -> int:
     """The rank the arm has in general (largest over a few sample poses)."""
     cached = getattr(robot, "_task_rank", None)
-    if cached is not None:
-        return cached
-    rng = np.random.default_rng(0)
-    samples = rng.uniform(robot.lower, robot.upper, size=(8, robot.dof))
-    rank = max(
-        np.linalg.matrix_rank(normalised(robot, jacobian(robot, q)), tol=1e-6) for q in samples
-    )
-    object.__setattr__(robot, "_task_rank", int(rank))
-    return int(rank)
+    if cached is None:
+        cached = max(np.linalg.matrix_rank(j, tol=1e-6) for j in _sample_jacobians(robot))
+        object.__setattr__(robot, "_task_rank", int(cached))
+    return cached
+
+
+def _sample_jacobians(robot: Robot) -> list[np.ndarray]:
+    """Normalised Jacobians at a few seeded random poses within the limits,
+    for the facts that hold in general (rank, which directions can move)."""
+    cached = getattr(robot, "_sample_jacobians", None)
+    if cached is None:
+        rng = np.random.default_rng(0)
+        samples = rng.uniform(robot.lower, robot.upper, size=(8, robot.dof))
+        cached = [normalised(robot, jacobian(robot, q)) for q in samples]
+        object.__setattr__(robot, "_sample_jacobians", cached)
+    return cached
 
 
 def length_scale(robot: Robot) -> float:
@@ -77,16 +84,11 @@ def controllable_rows(robot: Robot) -> np.ndarray:
     tilt, a planar arm cannot leave its plane): rows of the Jacobian that are
     not zero at every sample pose."""
     cached = getattr(robot, "_controllable_rows", None)
-    if cached is not None:
-        return cached
-    rng = np.random.default_rng(1)
-    samples = rng.uniform(robot.lower, robot.upper, size=(8, robot.dof))
-    size = np.max(
-        [np.abs(normalised(robot, jacobian(robot, q))).max(axis=1) for q in samples], axis=0
-    )
-    rows = size > 1e-9
-    object.__setattr__(robot, "_controllable_rows", rows)
-    return rows
+    if cached is None:
+        size = np.max([np.abs(j).max(axis=1) for j in _sample_jacobians(robot)], axis=0)
+        cached = size > 1e-9
+        object.__setattr__(robot, "_controllable_rows", cached)
+    return cached
 
 
 @dataclass(frozen=True)

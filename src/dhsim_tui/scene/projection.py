@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -52,7 +52,6 @@ class ViewScene:
     end_effector: tuple[float, float]
     bounds: tuple[float, float, float, float]  # xmin, xmax, ymin, ymax
     units: str = ""
-    warnings: tuple[str, ...] = field(default=())
 
 
 def _line(points: np.ndarray, view: View, colour: str) -> Polyline:
@@ -79,12 +78,7 @@ def project(wire: Wireframe, view: View) -> ViewScene:
         strokes = np.concatenate([wire.origins[:, None, :], wire.axes[:, k : k + 1, :], gap], 1)
         lines.append(_line(strokes.reshape(-1, 3)[:-1], view, colour))
     ee = (float(wire.end_effector[view.right]), float(wire.end_effector[view.up]))
-    warnings = ()
-    if wire.below_floor:
-        frames = ", ".join(str(i) for i in wire.below_floor)
-        plural = "s" if len(wire.below_floor) > 1 else ""
-        warnings = (f"frame{plural} {frames} below the floor",)
-    return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), wire.units, warnings)
+    return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), wire.units)
 
 
 def equal_scale_limits(

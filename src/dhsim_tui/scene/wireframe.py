@@ -39,6 +39,13 @@ class Wireframe:
     below_floor: tuple[int, ...]  # frames whose origin is under the floor
     units: str = "mm"
 
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the pose panel flags: frames that went through the floor."""
+        if not self.below_floor:
+            return ()
+        return (f"below the floor: frame {', '.join(str(i) for i in self.below_floor)}",)
+
 
 def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
     """``frames`` is Kinematics.frames(q): (n + 2, 4, 4), frames 0..n and the tool."""

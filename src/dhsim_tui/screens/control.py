@@ -41,14 +41,12 @@ from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
 #: below this the screen shows a message instead of a layout
 MIN_SIZE = (60, 18)
 #: Cartesian mode shows the pose panel too from this height on
 TALL_FOR_BOTH = 32
-#: at and above this all three views are shown at once
-WIDE_SIZE = (120, 36)
 
 
 class ControlScreen(SmoothMotion, Screen):
@@ -132,7 +130,7 @@ class ControlScreen(SmoothMotion, Screen):
     def _apply_size(self, width: int, height: int) -> None:
         too_small = width < MIN_SIZE[0] or height < MIN_SIZE[1]
         self.set_class(too_small, "-too-small")
-        self.set_class(width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1], "-wide")
+        self.set_class(is_wide(width, height), "-wide")
         self.set_class(height < TALL_FOR_BOTH, "-short")
         if too_small:
             self.query_one("#too-small", Static).update(
@@ -150,10 +148,7 @@ class ControlScreen(SmoothMotion, Screen):
         wire = build_wireframe(self.robot, frames)
         self._views.show(wire)
         self._joints.show(self.q)
-        self.warnings = ()
-        if wire.below_floor:
-            frames_text = ", ".join(str(i) for i in wire.below_floor)
-            self.warnings = (f"below the floor: frame {frames_text}",)
+        self.warnings = wire.warnings
         self._show_pose()
 
     def _show_pose(self) -> None:

@@ -31,7 +31,7 @@ from dhsim_tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_NOTES, ED
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import ROBOTS_DIR, OpenRobot
 from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
 JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "min", "max")
 FIELD_ROWS = (
@@ -54,7 +54,6 @@ FIELD_LABELS = {
     "tool_xyz": "tool xyz",
     "tool_rpy": "tool rpy (deg)",
 }
-WIDE_SIZE = (120, 36)
 
 
 def is_bundled(path: Path | None) -> bool:
@@ -133,7 +132,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self._apply_size(event.size.width, event.size.height)
 
     def _apply_size(self, width: int, height: int) -> None:
-        self.set_class(width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1], "-wide")
+        self.set_class(is_wide(width, height), "-wide")
 
     # -- showing the robot ---------------------------------------------------
     def refresh_robot(self) -> None:

@@ -9,6 +9,14 @@ from textual.widgets import Static
 from dhsim_tui.scene import VIEWS, Wireframe, project
 from dhsim_tui.widgets.arm_view import ArmView, PlotextArmView
 
+#: at and above this size a screen shows all three views at once
+WIDE_SIZE = (120, 36)
+
+
+def is_wide(width: int, height: int) -> bool:
+    return width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1]
+
+
 LEGEND = (
     "[b]Frames[/]  [bold ansi_bright_red]━━[/] x   [bold ansi_bright_green]━━[/] y   "
     "[bold ansi_bright_blue]━━[/] z   [bold ansi_bright_magenta]◆[/] tool\n"
