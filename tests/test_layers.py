@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parents[1] / "src" / "dhsim_tui"
+PACKAGE = Path(__file__).resolve().parents[1] / "dhsim_tui"
 UI_LIBRARIES = ("textual", "textual_plotext", "plotext", "rich")
 
 

@@ -18,7 +18,7 @@ def bundled_dir() -> Path:
     packaged = Path(__file__).resolve().parent.parent / "robots"
     if packaged.is_dir():
         return packaged
-    return Path(__file__).resolve().parents[3] / "robots"
+    return Path(__file__).resolve().parents[2] / "robots"
 
 
 def bundled_names() -> list[str]:
