@@ -2,17 +2,62 @@
 
 from __future__ import annotations
 
+import contextlib
+import signal
+import sys
 from pathlib import Path
 
 from textual import work
 from textual.app import App
+from textual.binding import Binding
+from textual.driver import Driver
+from textual.drivers.linux_driver import LinuxDriver
 
 from dhsim_tui.core import editing
+from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
-from dhsim_tui.core.robotfile import save
+from dhsim_tui.core.recovery import Recovery, source_key, write_recovery
+from dhsim_tui.core.robotfile import (
+    FileChangedError,
+    FileStamp,
+    ReadOnlyError,
+    load,
+    load_with_stamp,
+    save,
+)
+from dhsim_tui.core.text import printable
 from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.editor import EditorScreen, is_bundled
+from dhsim_tui.screens.dialogs import SaveGuard
+from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.screens.recover import offer_recovery
+from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.signals import DhsimDriver, SignalGuard
+
+
+#: a stamp no file matches: the file changed between loading the robot and stamping it
+def _unknown_stamp(path: Path) -> FileStamp:
+    return FileStamp(path, 0, -1, "")
+
+
+def _stamp_for(robot: Robot, path: Path | None) -> FileStamp | None:
+    """What ``path`` holds now, if it still holds ``robot`` (a save then checks
+    that nobody changed it since); bundled robots and new ones have none."""
+    if path is None or is_bundled(path):
+        return None
+    try:
+        on_disk, stamp = load_with_stamp(path)
+    except DhsimError:
+        return _unknown_stamp(path)
+    return stamp if on_disk == robot else _unknown_stamp(path)
+
+
+def _text_of(path: Path | None) -> str | None:
+    """A robot file's text, so that saving under a new name keeps its comments."""
+    try:
+        return path.read_text(encoding="utf-8") if path is not None else None
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None
 
 
 def _joint_count(text: str) -> int:
@@ -27,11 +72,26 @@ class DhsimApp(App):
 
     ``start`` is ``"control"`` (the simulator), ``"edit"`` (the editor on
     ``robot``) or ``"new"`` (ask for a joint count, then the editor).
+    ``recovery``: a real session (``dhsim``), which offers back unsaved changes
+    a stopped dhsim kept, and keeps them itself after an unexpected error.
     """
 
     CSS_PATH = "dhsim.tcss"
     TITLE = "dhsim"
     ENABLE_COMMAND_PALETTE = False
+    BINDINGS = [
+        # Textual binds ctrl+c to "copy" (screens, inputs) and a "press ctrl+q" hint:
+        # here it quits, through the same unsaved-changes question as q and ctrl+q
+        Binding(
+            "ctrl+c",
+            "quit",
+            "Quit",
+            id="app.quit_ctrl_c",
+            tooltip="Quit dhsim (asks first when something is not saved)",
+            show=False,
+            priority=True,
+        ),
+    ]
 
     def __init__(
         self,
@@ -40,24 +100,81 @@ class DhsimApp(App):
         renderer: str = "braille",
         start: str = "control",
         animate: bool = True,
+        recovery: bool = False,
+        stamp: FileStamp | None = None,
     ) -> None:
+        """``stamp``: what ``path`` held when ``robot`` was read from it (read
+        now when not given); a save refuses to overwrite a file that changed."""
         super().__init__()
         self.animate = animate
         self.robot = robot
         self.robot_path = path
         #: the robot as its file holds it (a pose saved only in memory differs)
         self.saved_robot: Robot | None = robot if path is not None else None
+        self.stamp = stamp if stamp is not None else _stamp_for(robot, path)
+        #: what the app started with: a robot without a file is "saved" as it came
+        self._first_robot = robot
         self.renderer = renderer
         self.start = start
+        self.recovery = recovery
+        #: lines to print after the app has ended (where unsaved work was kept)
+        self.exit_messages: list[str] = []
         self.sub_title = robot.name
+
+    def get_driver_class(self) -> type[Driver]:
+        driver = super().get_driver_class()
+        return DhsimDriver if driver is LinuxDriver else driver
 
     def on_mount(self) -> None:
         # pushed (not the default screen) so that switch_screen can replace it
         self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
+        if self.recovery:
+            self._start_with_recovery()
+        else:
+            self._open_start()
+
+    def _open_start(self) -> None:
         if self.start == "edit":
-            self.open_editor(self.robot, self.robot_path, saved=self.saved_robot)
+            self.action_edit()
         elif self.start == "new":
             self.start_new_robot()
+
+    @work(exclusive=True, group="modal")
+    async def _start_with_recovery(self) -> None:
+        """First offer back what a stopped dhsim kept: for this robot's file,
+        then for a new robot that was never saved."""
+        sources: list[Path | None] = [None]
+        if self.start != "new" and self.robot_path is not None:
+            sources.insert(0, self.robot_path)
+        for source in sources:
+            current = self.saved_robot if source is not None else None
+            found = await offer_recovery(self, source, current)
+            if found is not None:
+                self._restore(found)
+                return
+        self.call_later(self._open_start)
+
+    def _restore(self, found: Recovery) -> None:
+        """The editor on the recovered robot, unsaved against what the file holds."""
+        path = found.source
+        saved: Robot | None = None
+        stamp: FileStamp | None = None
+        if (
+            path is not None
+            and self.robot_path is not None
+            and (source_key(self.robot_path) == source_key(path))
+        ):
+            path, saved, stamp = self.robot_path, self.saved_robot, self.stamp
+        elif path is not None:
+            try:
+                saved = load(path)
+            except DhsimError:
+                saved = None  # gone or broken: everything counts as unsaved
+        self.open_editor(found.robot, path, saved=saved, stamp=stamp)
+        self.notify(
+            printable(f"restored the unsaved changes from {found.local_time}; ctrl+s saves them"),
+            markup=False,
+        )
 
     @work(exclusive=True, group="modal")
     async def start_new_robot(self) -> None:
@@ -72,55 +189,190 @@ class DhsimApp(App):
         )
         self.open_editor(editing.new_robot(self.robot.name, count or 1), None, saved=None)
 
-    def open_editor(self, robot: Robot, path: Path | None, saved: Robot | None = None) -> None:
+    def open_editor(
+        self,
+        robot: Robot,
+        path: Path | None,
+        saved: Robot | None = None,
+        stamp: FileStamp | None = None,
+    ) -> None:
         """The editor on ``robot``; ``saved`` is what its file holds (changes
-        against it count as unsaved)."""
-        editor = EditorScreen(robot, path, self.renderer, saved=saved)
-        self.push_screen(editor, self._editor_closed)
+        against it count as unsaved), ``stamp`` what the file held then."""
+        editor = EditorScreen(robot, path, self.renderer, saved=saved, stamp=stamp)
+        self.push_screen(editor, lambda result: self._editor_closed(result, editor.stamp))
 
     def action_edit(self) -> None:
-        self.open_editor(self.robot, self.robot_path, saved=self.saved_robot)
+        self.open_editor(self.robot, self.robot_path, saved=self.saved_robot, stamp=self.stamp)
 
-    def _editor_closed(self, result: tuple[Robot, Path | None] | None) -> None:
+    def _editor_closed(
+        self, result: tuple[Robot, Path | None] | None, stamp: FileStamp | None = None
+    ) -> None:
         """After the editor: the simulator runs the saved robot."""
         if result is None:
             return
         robot, path = result
         self.saved_robot = robot
+        self.stamp = stamp if path is not None and not is_bundled(path) else None
         if (robot, path) != (self.robot, self.robot_path):
-            self.robot, self.robot_path = robot, path
-            self.sub_title = robot.name
-            self.switch_screen(ControlScreen(robot, self.renderer, self.animate))
+            self._run(robot, path)
+
+    def _run(self, robot: Robot, path: Path | None) -> None:
+        """The simulator on another robot (after the editor, or a reload)."""
+        self.robot, self.robot_path = robot, path
+        self.sub_title = robot.name
+        self.switch_screen(ControlScreen(robot, self.renderer, self.animate))
 
     def keep_robot(self, robot: Robot) -> Path | None:
         """The simulator changed the robot (a saved pose): keep it, and write it
-        to its file when it has one of its own (bundled robots are templates).
-        A failed save raises DhsimError; the robot is kept in memory either way."""
+        to its file when it has one of its own (bundled robots are templates:
+        None, kept in memory until quitting asks). A failed save raises
+        DhsimError; the robot is kept in memory either way. When the file
+        changed on disk since it was read, or may not be written, it also asks
+        (save_flow): overwrite, reload or cancel; save as."""
         self.robot = robot
         path = self.robot_path
         if path is None or is_bundled(path):
             return None
-        save(robot, path)
+        try:
+            self.stamp = save(robot, path, expect=self.stamp)
+        except (FileChangedError, ReadOnlyError):
+            self._save_running_robot()
+            raise
         self.saved_robot = robot
         return path
 
-    async def action_quit(self) -> None:
-        """Quit, unless an editor anywhere on the stack has unsaved changes:
-        then ask (a dialog on top of the editor must not let them slip)."""
-        for screen in reversed(self.screen_stack):
-            if isinstance(screen, EditorScreen) and screen.dirty:
-                self._quit_with_guard(screen)
-                return
-        self.exit()
+    async def save_running_robot(self) -> bool:
+        """Save the simulator's robot (its poses) with the UI's save flow: a
+        name for a bundled or new robot, a question when the file changed on
+        disk. True once nothing is unsaved (saved, or reloaded by choice)."""
+        result = await save_flow(
+            self,
+            self.robot,
+            self.robot_path,
+            self.stamp,
+            base_text=_text_of(self.robot_path),
+        )
+        if result is None:
+            return False
+        self._saved(result)
+        return True
+
+    def _saved(self, result: SaveResult) -> None:
+        self.saved_robot, self.stamp, self.robot_path = result.robot, result.stamp, result.path
+        if result.kind == "reloaded":  # the file's robot, by the user's choice
+            self._run(result.robot, result.path)
 
     @work(exclusive=True, group="modal")
-    async def _quit_with_guard(self, editor: EditorScreen) -> None:
+    async def _save_running_robot(self) -> None:
+        await self.save_running_robot()
+
+    # -- unsaved work ------------------------------------------------------------
+    @property
+    def has_unsaved_poses(self) -> bool:
+        """The running robot differs from its file: a pose kept only in memory."""
+        baseline = self.saved_robot if self.saved_robot is not None else self._first_robot
+        return self.robot != baseline
+
+    def _editors(self) -> list[EditorScreen]:
+        return [s for s in reversed(self.screen_stack) if isinstance(s, EditorScreen)]
+
+    def unsaved_work(self) -> list[tuple[Robot, Path | None]]:
+        """Every robot with changes not on disk, with its source file (None: a
+        new robot). While an editor is open it has the simulator's poses (it
+        started from them; none can be added meanwhile), so it alone counts."""
+        editors = self._editors()
+        if not editors:
+            return [(self.robot, self.robot_path)] if self.has_unsaved_poses else []
+        work: list[tuple[Robot, Path | None]] = []
+        seen: set[str] = set()
+        for editor in editors:
+            source = editor.path or editor.template
+            if editor.dirty and source_key(source) not in seen:
+                seen.add(source_key(source))
+                work.append((editor.robot, source))
+        return work
+
+    def keep_unsaved_work(self, signum: int | None = None) -> list[str]:
+        """Write every unsaved robot to a recovery file; what to tell the user.
+        Safe in a signal handler (no lock, no terminal output)."""
+        why = signal.Signals(signum).name if signum else "unexpected error"
+        messages = []
+        for robot, source in self.unsaved_work():
+            what = f"{robot.name} ({source if source is not None else 'new robot'})"
+            try:
+                file = write_recovery(robot, source)
+            except (OSError, DhsimError) as exc:
+                reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
+                messages.append(f"dhsim: {why}: unsaved changes to {what} NOT kept: {reason}")
+            else:
+                messages.append(
+                    f"dhsim: {why}: unsaved changes to {what} kept in {file}; "
+                    "dhsim offers them back when you open it again"
+                )
+        return [printable(message) for message in messages]
+
+    def _keep_before_crash(self) -> None:
+        if self.recovery and not self.exit_messages:
+            with contextlib.suppress(Exception):
+                self.exit_messages = self.keep_unsaved_work()
+
+    def _handle_exception(self, error: Exception) -> None:
+        """An unexpected error ends the app (status 1): keep unsaved work first."""
+        self._keep_before_crash()
+        super()._handle_exception(error)
+
+    def panic(self, *renderables) -> None:
+        """Textual's other way out after an error (e.g. its input thread failed):
+        keep unsaved work, and end with status 1 (Textual leaves it at 0)."""
+        self._keep_before_crash()
+        self._return_code = 1  # no public setter; exit() would not stop a panic
+        super().panic(*renderables)
+
+    async def action_quit(self) -> None:
+        """Quit, unless something is not saved: then ask, save, discard or stay.
+        An open editor asks about its robot (a dialog on top of it must not let
+        its changes slip; it started with the simulator's poses), else the
+        simulator about poses kept only in memory."""
+        editors = self._editors()
+        if editors:
+            dirty = next((editor for editor in editors if editor.dirty), None)
+            if dirty is None:
+                self.exit()
+            else:
+                self._quit_after_editor(dirty)
+        elif self.has_unsaved_poses:
+            self._quit_after_poses()
+        else:
+            self.exit()
+
+    @work(exclusive=True, group="modal")
+    async def _quit_after_editor(self, editor: EditorScreen) -> None:
         if await editor.guard("quitting"):
+            self.exit()
+
+    @work(exclusive=True, group="modal")
+    async def _quit_after_poses(self) -> None:
+        answer = await self.push_screen_wait(SaveGuard(self.robot.name, "quitting"))
+        if answer == "discard" or (answer == "save" and await self.save_running_robot()):
             self.exit()
 
 
 def run_app(
-    robot: Robot, path: Path | None = None, renderer: str = "braille", start: str = "control"
+    robot: Robot,
+    path: Path | None = None,
+    renderer: str = "braille",
+    start: str = "control",
+    stamp: FileStamp | None = None,
 ) -> int:
-    DhsimApp(robot, path, renderer, start).run()
-    return 0
+    """Run the TUI in this terminal; the exit status (1 after an unexpected error,
+    128 + the signal's number after SIGHUP, SIGTERM or SIGQUIT)."""
+    app = DhsimApp(robot, path, renderer, start, recovery=True, stamp=stamp)
+    guard = SignalGuard(app, app.keep_unsaved_work)
+    guard.install()
+    try:
+        app.run()
+    finally:
+        guard.uninstall()
+    for message in app.exit_messages:
+        print(printable(message), file=sys.stderr)
+    return app.return_code or 0

@@ -1,25 +1,43 @@
 """The ``dhsim`` command: a thin shell over the core.
 
-``fk``, ``check`` and ``list`` never import textual (they are used in
-scripts and must start fast); only opening the simulator does. Every bad
-input ends as one line on stderr and exit status 2, never a traceback.
+``fk``, ``ik``, ``check`` and ``list`` never import textual (they are used in
+scripts and must start fast); only opening the simulator does, and only when
+stdin and stdout are a terminal. Every bad input ends as one line on stderr
+and exit status 2, never a traceback; an unexpected error as one line and
+exit status 1. Whatever the line quotes from the user or a file is passed
+through :func:`printable`, so no control character reaches the terminal.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
+import os
 import sys
 from collections.abc import Sequence
 
+import numpy as np
+
 from dhsim_tui import __version__
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.library import bundled_names, describe, load_robot
+from dhsim_tui.core.ik import solve
+from dhsim_tui.core.ik_reasons import angle, length
+from dhsim_tui.core.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
 from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
-from dhsim_tui.core.validation import check_joint_values
+from dhsim_tui.core.orientation import oat_matrix
+from dhsim_tui.core.robotfile import load_with_stamp
+from dhsim_tui.core.text import printable
+from dhsim_tui.core.validation import check_joint_values, fmt
 
 EXIT_USAGE = 2
+EXIT_INTERNAL = 1
+EXIT_INTERRUPTED = 130
+NEEDS_TERMINAL = (
+    "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
+    "fk, ik, check and list work without one"
+)
 #: options whose value may start with a minus sign (``--q -10,20``)
 VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
 #: random restarts of `dhsim ik` after the first start fails (seeded: repeatable)
@@ -62,12 +80,12 @@ def parse_values(text: str, option: str) -> list[float]:
                 raise ValueError
             value = float(item)
         except ValueError:
-            shown = repr(item) if item else "an empty value"
+            shown = printable(repr(item)) if item else "an empty value"
             raise DhsimError(f"{option}: item {number} ({shown}) is not a number") from None
         if not math.isfinite(value) or abs(value) > MAX_ABS:
             raise DhsimError(
-                f"{option}: item {number} ({item}) is not a finite number "
-                f"of sane size (|value| <= {MAX_ABS:g})"
+                f"{option}: item {number} ({printable(item)}) is not a finite number "
+                f"of sane size (|value| <= {fmt(MAX_ABS)})"
             )
         values.append(value)
     return values
@@ -87,24 +105,26 @@ def _round(value: float, places: int = 2) -> float:
     return round(value, places) + 0.0  # + 0.0 turns -0.0 into 0.0
 
 
-def _row(a: str, b: str, c: str, unit: str = "") -> str:
-    return f"{a:>10}{b:>10}{c:>10}   {unit}".rstrip()
+def _table(rows: list[tuple[str, str, str, str]]) -> list[str]:
+    """Right-aligned columns 10 wide, wider when a number needs it (a column of
+    a huge robot), so neighbouring numbers never run together."""
+    width = max(10, *(len(cell) + 2 for row in rows for cell in row[:3]))
+    return [f"{a:>{width}}{b:>{width}}{c:>{width}}   {unit}".rstrip() for a, b, c, unit in rows]
+
+
+def _joints_line(robot: Robot, q: Sequence[float]) -> str:
+    return "q  " + "  ".join(f"{label} {fmt(v)}" for label, v in zip(robot.labels, q, strict=True))
 
 
 def format_fk(robot: Robot, q: Sequence[float]) -> str:
     pose = robot.kinematics.end_effector(q)
     places = LENGTH_DECIMALS[robot.units]
-    joints = "  ".join(f"{label} {v:g}" for label, v in zip(robot.labels, q, strict=True))
-    return "\n".join(
-        [
-            robot.name,
-            f"q  {joints}",
-            _row("X", "Y", "Z", f"({robot.units})"),
-            _row(*(f"{_round(v, places):.{places}f}" for v in pose.xyz)),
-            _row("O", "A", "T", "(deg)"),
-            _row(*(f"{_round(v):.2f}" for v in pose.oat)),
-        ]
+    xyz = [f"{_round(v, places):.{places}f}" for v in pose.xyz]
+    oat = [f"{_round(v):.2f}" for v in pose.oat]
+    table = _table(
+        [("X", "Y", "Z", f"({robot.units})"), (*xyz, ""), ("O", "A", "T", "(deg)"), (*oat, "")]
     )
+    return "\n".join([printable(robot.name), _joints_line(robot, q), *table])
 
 
 def fk_json(robot: Robot, q: Sequence[float]) -> str:
@@ -130,11 +150,6 @@ def cmd_fk(args: argparse.Namespace) -> int:
 
 
 def cmd_ik(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from dhsim_tui.core.ik import solve
-    from dhsim_tui.core.orientation import oat_matrix
-
     robot, _ = load_robot(args.robot)
     xyz = parse_values(args.xyz, "--xyz")
     if len(xyz) != 3:
@@ -152,6 +167,8 @@ def cmd_ik(args: argparse.Namespace) -> int:
     result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
     if not result.success:
         raise DhsimError(f"no solution for {robot.name}: {result.reason}")
+    if not all(math.isfinite(v) for v in (*result.q, result.residual)):
+        raise DhsimError(f"no solution for {robot.name}: the solver lost precision")
     pose = robot.kinematics.end_effector(result.q)
     if args.json:
         print(
@@ -169,19 +186,18 @@ def cmd_ik(args: argparse.Namespace) -> int:
             )
         )
     else:
-        joints = "  ".join(
-            f"{label} {_round(v, 4):g}" for label, v in zip(robot.labels, result.q, strict=True)
-        )
+        q = [_round(v, 4) for v in result.q]
         print(
-            f"{robot.name}\nq  {joints}\nresidual {result.position_error:.2g} {robot.units}, "
-            f"{result.orientation_error:.2g} rad"
+            f"{printable(robot.name)}\n{_joints_line(robot, q)}\n"
+            f"residual {length(robot, result.position_error)}, "
+            f"{angle(result.orientation_error)}"
         )
     return 0
 
 
 def cmd_check(args: argparse.Namespace) -> int:
     robot, path = load_robot(args.robot)
-    print(f"ok  {describe(robot)}  ({path})")
+    print(printable(f"ok  {describe(robot)}  ({path})"))
     return 0
 
 
@@ -191,25 +207,44 @@ def cmd_list(args: argparse.Namespace) -> int:
         try:
             robot, _ = load_robot(name)
         except DhsimError as exc:
-            print(f"dhsim: error: {exc}", file=sys.stderr)
+            print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
             status = EXIT_USAGE
             continue
-        print(f"{name:<17} {describe(robot)}")
+        print(printable(f"{name:<17} {describe(robot)}"))
     return status
 
 
-def cmd_run(args: argparse.Namespace) -> int:
-    robot, path = load_robot(args.robot)  # a bad robot is reported before any UI starts
-    from dhsim_tui.app import run_app
+def has_terminal() -> bool:
+    """Both stdin and stdout are a terminal (the simulator reads keys and draws)."""
+    for stream in (sys.stdin, sys.stdout):
+        try:
+            if stream is None or not os.isatty(stream.fileno()):
+                return False
+        except (AttributeError, OSError, ValueError):  # closed, or not a real file
+            return False
+    return True
 
-    return run_app(robot, path, args.renderer)
+
+def _open(argument: str | None):
+    """The robot, its file and the stamp of the very bytes read (a save later
+    refuses to overwrite a change made on disk since then)."""
+    path = resolve(argument if argument is not None else DEFAULT_ROBOT)
+    robot, stamp = load_with_stamp(path)
+    return robot, path, stamp
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    robot, path, stamp = _open(args.robot)  # a bad robot is reported before any UI starts
+    from dhsim_tui.app import run_app  # textual loads only for the simulator
+
+    return run_app(robot, path, args.renderer, stamp=stamp)
 
 
 def cmd_edit(args: argparse.Namespace) -> int:
-    robot, path = load_robot(args.robot)
+    robot, path, stamp = _open(args.robot)
     from dhsim_tui.app import run_app
 
-    return run_app(robot, path, start="edit")
+    return run_app(robot, path, start="edit", stamp=stamp)
 
 
 def cmd_new(args: argparse.Namespace) -> int:
@@ -279,8 +314,14 @@ def _main_parser() -> _Parser:
     return parser
 
 
+#: the commands that open the simulator: they need a terminal
+INTERACTIVE = (cmd_run, cmd_edit, cmd_new)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
+    _escape_unencodable(sys.stdout)
+    _escape_unencodable(sys.stderr)
     try:
         if args_list and args_list[0] in ("-h", "--help"):
             print(MAIN_HELP)
@@ -294,15 +335,41 @@ def main(argv: Sequence[str] | None = None) -> int:
             args = parser.parse_args(_glue_negative_values(args_list[1:]))
         else:
             args = _main_parser().parse_args(args_list)
-        return args.func(args)
+        if args.func in INTERACTIVE and not has_terminal():
+            print(NEEDS_TERMINAL, file=sys.stderr)
+            return EXIT_USAGE
+        with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
+            status = args.func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not in Python's exit handler
+        return status
     except UsageError as exc:
-        print(exc, file=sys.stderr)
+        print(printable(str(exc)), file=sys.stderr)
         return EXIT_USAGE
     except DhsimError as exc:
-        print(f"dhsim: error: {exc}", file=sys.stderr)
+        print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
-        return 130
+        return EXIT_INTERRUPTED
     except BrokenPipeError:  # e.g. `dhsim list | head -1`
-        sys.stderr.close()
+        _silence_stdout()
         return 0
+    except Exception as exc:  # the last resort: one line and a failure status
+        print(
+            f"dhsim: internal error: {printable(f'{type(exc).__name__}: {exc}')}",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL
+
+
+def _escape_unencodable(stream: object) -> None:
+    """Text the terminal's encoding cannot show (a C locale and a name in
+    Chinese) is written as backslash escapes instead of raising an error."""
+    with contextlib.suppress(AttributeError, ValueError, OSError):
+        stream.reconfigure(errors="backslashreplace")  # type: ignore[attr-defined]
+
+
+def _silence_stdout() -> None:
+    """After a closed pipe, send what Python still flushes at exit nowhere."""
+    with contextlib.suppress(AttributeError, ValueError, OSError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())

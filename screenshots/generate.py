@@ -1,17 +1,21 @@
 """Regenerate the README's screenshots from the real app (headless).
 
-    python screenshots/generate.py
+    python screenshots/generate.py [PREFIX ...]
 
-Each shot is (file name, robot, terminal size, keys pressed first).
+Each shot is (file name, robot, terminal size, keys pressed first). With
+prefixes, only the shots whose names start with one of them (``control
+cartesian`` redraws the simulator's shots and leaves the editor's alone).
 """
 
 from __future__ import annotations
 
 import asyncio
+import sys
 from pathlib import Path
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
+from dhsim_tui.screens.control import ControlScreen
 
 HERE = Path(__file__).resolve().parent
 
@@ -119,15 +123,22 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
 
 async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[str, ...]) -> None:
     robot, path = load_robot(robot_name)
-    app = DhsimApp(robot, path, animate=False)
+    app = DhsimApp(robot, path, animate=False)  # moves land at once: the same shot every time
     async with app.run_test(size=size) as pilot:
         await pilot.press(*keys)
+        screen = app.screen
+        if isinstance(screen, ControlScreen):  # the footer as dhsim starts: "m Motion on"
+            screen.animate = True
+            screen.refresh_bindings()
         await pilot.pause()
         app.save_screenshot(filename=f"{name}.svg", path=str(HERE))
 
 
 def main() -> None:
+    prefixes = tuple(sys.argv[1:])
     for shot in SHOTS:
+        if prefixes and not shot[0].startswith(prefixes):
+            continue
         asyncio.run(shoot(*shot))
         print(f"screenshots/{shot[0]}.svg")
 

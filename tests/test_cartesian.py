@@ -149,29 +149,35 @@ async def test_save_pose_on_a_bundled_robot_keeps_it_in_memory():
         assert app.robot.pose("here") == (1.0, 0, 0, 0, 0, 0)
 
 
-async def test_home_moves_smoothly_and_arrives():
+async def test_home_moves_smoothly_and_arrives(monkeypatch):
+    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 2.0)  # slow enough for a busy machine
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")
         await pilot.press("right", "right")  # Th1 at 90
         await pilot.press("h")
-        await pilot.pause(0.4)
+        assert screen(app).moving
         middle = screen(app).q[0]
         assert 0.0 < middle < 90.0  # on its way
-        await pilot.pause(1.0)
+        for _ in range(100):
+            if not screen(app).moving:
+                break
+            await pilot.pause(0.05)
         assert screen(app).q == app.robot.home
         assert not screen(app).moving
 
 
-async def test_any_key_interrupts_a_move_and_m_turns_motion_off():
+async def test_escape_interrupts_a_move_and_m_turns_motion_off(monkeypatch):
+    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 20.0)  # still moving when stopped
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")
         await pilot.press("right", "right", "h")
         await pilot.pause(0.3)
-        await pilot.press("v")
+        await pilot.press("escape")
         stopped = screen(app).q[0]
         assert 0.0 < stopped < 90.0 and not screen(app).moving
+        assert status(app) == "stopped"
         await pilot.pause(0.5)
         assert screen(app).q[0] == stopped  # it stays where it was stopped
         await pilot.press("m", "h")
@@ -192,6 +198,7 @@ async def test_save_pose_that_cannot_be_written_says_so(tmp_path, monkeypatch):
     app = DhsimApp(load(file), file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right", "P", "ctrl+u", *"spot", "enter")
-        assert "pose spot kept in memory, but not saved" in status(app)
+        assert status(app).startswith("not saved:")
+        assert "(pose spot is kept in memory)" in status(app)
         assert app.robot.pose("spot") == (501.0, 400.0, 300.0)
     assert file.read_bytes() == before

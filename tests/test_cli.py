@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import subprocess
 import sys
@@ -15,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pty_screen import PtyScreen, dhsim_command
 
 from dhsim_tui.cli import main
 
@@ -297,7 +299,6 @@ def assert_one_line_error(code: int, out: str, err: str, *fragments: str) -> Non
         # robots that do not exist
         (["fk", "no_such_robot"], ["no_such_robot", "puma560"]),
         (["check", "no_such_robot.toml"], ["no_such_robot.toml"]),
-        (["no_such_robot"], ["no_such_robot"]),  # the simulator refuses before any UI
     ],
 )
 def test_bad_input(capsys, argv, fragments):
@@ -482,3 +483,106 @@ def test_ik_bad_input_exits_2_with_one_line(capsys, argv, message):
     code, out, err = run(capsys, *argv)
     assert code == 2 and out == ""
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+# --- the simulator needs a terminal; the scripting commands don't ----------------------
+
+NEEDS_TERMINAL = (
+    "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
+    "fk, ik, check and list work without one\n"
+)
+INTERACTIVE_ARGV = [[], ["puma560"], ["edit", "puma560"], ["new"], ["no_such_robot"]]
+
+
+def dhsim_script() -> str:
+    """The installed console script beside this interpreter (what a user runs)."""
+    return dhsim_command()
+
+
+@pytest.mark.parametrize("argv", INTERACTIVE_ARGV, ids=lambda a: " ".join(a) or "bare")
+def test_simulator_without_a_terminal_exits_2_at_once(argv):
+    # stdin from /dev/null, stdout a pipe: before the fix this never returned (timeout)
+    result = subprocess.run(
+        [dhsim_script(), *argv],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=10,
+    )
+    assert (result.returncode, result.stdout, result.stderr) == (2, "", NEEDS_TERMINAL)
+
+
+@pytest.mark.parametrize("tty_side", ["stdin", "stdout"])
+def test_simulator_needs_both_stdin_and_stdout_to_be_a_terminal(tty_side):
+    main_fd, terminal_fd = os.openpty()
+    try:
+        streams = {"stdin": subprocess.DEVNULL, "stdout": subprocess.PIPE}
+        streams[tty_side] = terminal_fd
+        result = subprocess.run(
+            [dhsim_script(), "puma560"],
+            **streams,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=10,
+        )
+    finally:
+        os.close(terminal_fd)
+        os.close(main_fd)
+    assert result.returncode == 2
+    assert result.stderr == NEEDS_TERMINAL
+
+
+def test_no_terminal_check_comes_before_loading_textual():
+    script = textwrap.dedent(
+        """
+        import contextlib, io, sys
+        from dhsim_tui.cli import main
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            codes = [main(argv) for argv in ([], ["edit", "stanford"], ["new", "arm"])]
+        loaded = sorted({m.split(".")[0] for m in sys.modules} & {"textual", "rich"})
+        print(codes, loaded, err.getvalue().count("interactive terminal"))
+        """
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", script],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert result.stdout.strip() == "[2, 2, 2] [] 3", result.stderr
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [["fk", "puma560", "--q", PAPER_Q], ["ik", "planar2", "--xyz", "1,1,0"], ["check", "ur5"]],
+)
+def test_scripting_commands_work_without_a_terminal(argv):
+    result = subprocess.run(
+        [dhsim_script(), *argv],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert (result.returncode, result.stderr) == (0, ""), result.stderr
+    assert result.stdout.strip()
+
+
+def test_list_works_without_a_terminal():
+    result = subprocess.run(
+        [dhsim_script(), "list"], stdin=subprocess.DEVNULL, capture_output=True, timeout=60
+    )
+    assert (result.returncode, result.stderr) == (0, b"")
+    assert [line.split()[0] for line in result.stdout.decode().splitlines()] == BUNDLED_STEMS
+
+
+def test_simulator_in_a_terminal_refuses_a_bad_robot_before_any_ui():
+    with PtyScreen(["no_such_robot"]) as shell:
+        status = shell.wait_exit()
+        raw = shell.raw_bytes()
+        shown = shell.screen_text()
+    assert status == 2
+    assert "no_such_robot: no such file" in shown
+    assert b"\x1b[?1049h" not in raw  # the alternate screen was never entered

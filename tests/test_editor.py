@@ -421,15 +421,20 @@ async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp):
     assert load(file) == edited
 
 
-async def test_bundled_robots_are_templates(in_tmp):
-    app = editor_app()  # the bundled Puma: saving asks for a name
+@pytest.mark.parametrize("name", ["puma560", "irb140"])
+async def test_bundled_robots_are_templates(name, in_tmp):
+    """A bundled robot asks for a name on save, and offers its own file's name."""
+    robot, path = load_robot(name)
+    app = editor_app(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.pause()
         await pilot.press("ctrl+s")
         assert isinstance(app.screen, ValueEntry)
-        assert app.screen.query_one("Input").value == "puma_560"
+        assert app.screen.query_one("Input").value == name
         await pilot.press("enter")
-        assert loads((in_tmp / "robots" / "puma_560.toml").read_text()) == editor(app).robot
+        saved = in_tmp / "robots" / f"{name}.toml"
+        assert loads(saved.read_text()) == editor(app).robot
+        assert editor(app).path == Path("robots") / f"{name}.toml"
 
 
 async def test_control_screen_e_opens_the_editor():

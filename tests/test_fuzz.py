@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from dhsim_tui.core.errors import RobotFileError
-from dhsim_tui.core.model import AXES, CONVENTIONS, UNITS, Joint, Robot, Tool
+from dhsim_tui.core.model import AXES, CONVENTIONS, MIN_LENGTH_MM, UNITS, Joint, Robot, Tool
 from dhsim_tui.core.robotfile import dumps, load, loads, robot_to_dict, save
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
@@ -51,6 +51,15 @@ def assert_valid(robot: Robot) -> None:
     assert robot.base_z in AXES and robot.base_x in AXES
     assert robot.base_z[1] != robot.base_x[1]
     assert 1 <= robot.dof <= 32
+    for name in (robot.name, *robot.pose_names):
+        assert not any(_steers_terminal(c) for c in name), ascii(name)
+    lengths = [robot.base_height, *robot.tool.xyz]
+    for joint in robot.joints:
+        lengths += [joint.d, joint.a]
+        if joint.type == "prismatic":
+            lengths += [joint.min, joint.max]
+    for value in lengths:  # 0, or at least a nanometre
+        assert value == 0 or abs(value) * UNITS[robot.units] >= MIN_LENGTH_MM * (1 - 1e-9)
     for joint in robot.joints:
         assert joint.type in ("revolute", "prismatic")
         numbers = (joint.theta, joint.d, joint.a, joint.alpha, joint.min, joint.max)
@@ -64,6 +73,20 @@ def assert_valid(robot: Robot) -> None:
         assert len(values) == robot.dof
         for joint, value in zip(robot.joints, values, strict=True):
             assert joint.min <= value <= joint.max
+
+
+def _steers_terminal(char: str) -> bool:
+    """C0, DEL, C1, bidi overrides and isolates, zero-width marks, surrogates
+    (written out here, independently of dhsim_tui.core.text)."""
+    code = ord(char)
+    return (
+        code < 0x20
+        or 0x7F <= code < 0xA0
+        or 0x200B <= code <= 0x200F
+        or 0x202A <= code <= 0x202E
+        or 0x2066 <= code <= 0x2069
+        or 0xD800 <= code <= 0xDFFF
+    )
 
 
 # -- (a) arbitrary text and bytes ----------------------------------------------
@@ -271,28 +294,31 @@ def test_mutation_fuzz_reaches_both_outcomes(tmp_path):
 # -- (c) valid random robots round-trip exactly --------------------------------
 
 finite = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
+#: a length: 0 or at least 1e-5 (a nanometre is 1e-6 mm, 1e-9 m: fine in every unit)
+length = finite.map(lambda v: 0.0 if abs(v) < 1e-5 else v)
 unit = st.floats(0.0, 1.0)
 
 
 @st.composite
 def joints(draw) -> Joint:
     joint_type = draw(st.sampled_from(["revolute", "prismatic"]))
-    low, home, high = sorted(draw(st.tuples(finite, finite, finite)))  # home may equal a limit
+    variable = length if joint_type == "prismatic" else finite
+    low, home, high = sorted(draw(st.tuples(variable, variable, variable)))  # home may be a limit
     assume(low < high)
-    fixed = draw(st.tuples(finite, finite, finite))
+    fixed = draw(st.tuples(finite, length, length, finite))
     if joint_type == "revolute":
-        theta, d = home, fixed[0]
+        theta, d = home, fixed[1]
     else:
         theta, d = fixed[0], home
-    return Joint(joint_type, theta, d, fixed[1], fixed[2], low, high)
+    return Joint(joint_type, theta, d, fixed[2], fixed[3], low, high)
 
 
 # any text a file can hold, except control characters, which names forbid
-names = st.text(
-    st.characters(min_codepoint=32, exclude_categories=("Cs",), exclude_characters="\x7f"),
-    min_size=1,
-    max_size=20,
-).filter(str.strip)
+names = (
+    st.text(st.characters(exclude_categories=("Cs",)), min_size=1, max_size=20)
+    .map(lambda text: "".join(c for c in text if not _steers_terminal(c)))
+    .filter(str.strip)
+)
 
 
 @st.composite
@@ -302,7 +328,7 @@ def robots(draw) -> Robot:
     base_x = draw(st.sampled_from([a for a in AXES if a[1] != base_z[1]]))
     if draw(st.booleans()):
         tool = Tool(
-            xyz=draw(st.tuples(finite, finite, finite)),
+            xyz=draw(st.tuples(length, length, length)),
             rpy=draw(st.tuples(finite, finite, finite)),
         )
     else:
@@ -322,7 +348,7 @@ def robots(draw) -> Robot:
         joints=joint_list,
         units=draw(st.sampled_from(sorted(UNITS))),
         convention=draw(st.sampled_from(CONVENTIONS)),
-        base_height=draw(st.floats(0, 1e6)),
+        base_height=draw(st.floats(0, 1e6).map(lambda v: 0.0 if v < 1e-5 else v)),
         base_z=base_z,
         base_x=base_x,
         tool=tool,

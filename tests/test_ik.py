@@ -148,7 +148,7 @@ def test_cartesian_jog_refuses_what_it_cannot_reach():
     q = (0.0, 0.0)  # stretched out: can't go further along X
     move = cartesian_move(robot, q, move_pose(robot.kinematics.pose(q), 0, 0.1))
     assert not move.moved and move.q == q
-    assert move.reason
+    assert move.reason == "out of reach (closest found 0.1 m away)"
 
 
 def test_quintic_blend():

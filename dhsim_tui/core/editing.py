@@ -245,9 +245,24 @@ def slug(name: str) -> str:
     return text[:60] or "robot"
 
 
+def unload(robot: Robot) -> Robot:
+    """``robot`` without the data computed from it and cached on it (the
+    compiled kinematics, the Jacobian samples): only its fields stay, so a
+    robot kept for undo costs about a kilobyte, not tens. Nothing it means
+    changes: whatever was dropped is computed again on first use."""
+    fields = Robot.__dataclass_fields__
+    for name in [name for name in vars(robot) if name not in fields]:
+        del vars(robot)[name]
+    return robot
+
+
 @dataclass
 class History:
-    """Undo and redo over immutable robots: each state is a whole robot."""
+    """Undo and redo over immutable robots: each state is a whole robot.
+
+    Robots waiting in the undo and redo stacks are kept :func:`unload`-ed:
+    3,000 edits of a 32-joint arm would otherwise keep 3,000 compiled
+    kinematics (about 41 KiB each)."""
 
     current: Robot
     _undo: list[Robot] = field(default_factory=list)
@@ -257,7 +272,7 @@ class History:
         """Make ``robot`` current; False (and nothing recorded) if it is unchanged."""
         if robot == self.current:
             return False
-        self._undo.append(self.current)
+        self._undo.append(unload(self.current))
         self._redo.clear()
         self.current = robot
         return True
@@ -265,14 +280,14 @@ class History:
     def undo(self) -> bool:
         if not self._undo:
             return False
-        self._redo.append(self.current)
+        self._redo.append(unload(self.current))
         self.current = self._undo.pop()
         return True
 
     def redo(self) -> bool:
         if not self._redo:
             return False
-        self._undo.append(self.current)
+        self._undo.append(unload(self.current))
         self.current = self._redo.pop()
         return True
 

@@ -8,7 +8,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
+from dhsim_tui.core import ik_reasons
+from dhsim_tui.core.ik import POSITION, IKResult, rotation_error, solve
+from dhsim_tui.core.jacobian import controllable_rows, jacobian, length_scale, normalised
 from dhsim_tui.core.model import Robot, mm_to_unit
+from dhsim_tui.core.orientation import rotx, roty, rotz
 
 #: step sizes offered by ``[`` and ``]``, smallest first
 REVOLUTE_STEPS_DEG = (0.1, 1.0, 5.0, 15.0, 45.0)
@@ -79,8 +85,6 @@ def cartesian_target(robot: Robot, q: tuple[float, ...], row: int, delta: float)
 def move_pose(pose, row: int, delta: float):
     """A copy of ``pose`` moved along world X/Y/Z (rows 0-2) or turned about
     its own x/y/z axis (rows 3-5, degrees)."""
-    from dhsim_tui.core.orientation import rotx, roty, rotz
-
     pose = pose.copy()
     if row < 3:
         pose[row, 3] += delta
@@ -99,12 +103,13 @@ class CartesianMove:
 def cartesian_move(robot: Robot, q: tuple[float, ...], target) -> CartesianMove:
     """Follow ``target`` from ``q`` by inverse kinematics, continuously: no
     restarts, so the arm never jumps to another branch; what can't be reached
-    moves nothing and says why."""
-    import numpy as np
+    moves nothing and says why: which part (position or orientation) and
+    what stops it (a joint's limit, a singularity, the reach)."""
+    with np.errstate(all="ignore"):  # degenerate arms: guarded, never printed
+        return _cartesian_move(robot, tuple(q), np.asarray(target, dtype=float))
 
-    from dhsim_tui.core.ik import rotation_error, solve
-    from dhsim_tui.core.jacobian import controllable_rows, dexterity, length_scale
 
+def _cartesian_move(robot: Robot, q: tuple[float, ...], target: np.ndarray) -> CartesianMove:
     rows = controllable_rows(robot)
     # fewer joints than directions it can move in (a planar arm): it positions the tool
     position_only = robot.dof < int(rows.sum())
@@ -115,22 +120,71 @@ def cartesian_move(robot: Robot, q: tuple[float, ...], target) -> CartesianMove:
             rotation_error(target[:3, :3], current[:3, :3]),
         ]
     )
+    turning = bool(np.abs(change[:3]).max() < 1e-12)
     if position_only:
         rows = rows.copy()
         rows[3:] = True  # orientation is let go, so any turn there is "not possible"
-        if np.abs(change[:3]).max() < 1e-12 and np.abs(change[3:]).max() > 1e-12:
+        if turning and np.abs(change[3:]).max() > 1e-12:
             return CartesianMove(q, False, "this arm only positions its tool; it can't turn it")
     if np.abs(change[~rows]).max(initial=0.0) > 1e-9:
         return CartesianMove(q, False, "the arm has no joint that moves the tool that way")
+    key = (robot, q, target.tobytes())
+    if _last_refusal[0] == key:  # the same step again (a held key): the same answer, at once
+        return _last_refusal[1]
     result = solve(robot, target, q, max_iter=40, position_only=position_only)
     if not result.success:
-        if dexterity(robot, q).singular:
-            return CartesianMove(q, False, "singular here: that direction can't be followed")
-        return CartesianMove(q, False, result.reason)
-    jumps = [abs(a - b) for j, a, b in zip(robot.joints, result.q, q, strict=True) if j.is_revolute]
-    if jumps and max(jumps) > MAX_JOINT_JUMP_DEG:
+        move = CartesianMove(q, False, _why(robot, result, turning))
+        _last_refusal[:] = [key, move]
+        return move
+    jumps = [
+        (abs(a - b), i)
+        for i, (j, a, b) in enumerate(zip(robot.joints, result.q, q, strict=True))
+        if j.is_revolute
+    ]
+    if jumps and max(jumps)[0] > MAX_JOINT_JUMP_DEG:
+        if singular_towards(robot, q, change, position_only):
+            return CartesianMove(q, False, ik_reasons.why_not_moved(robot, ik_reasons.SINGULAR, ()))
+        jump, index = max(jumps)
+        turn = ik_reasons.amount(jump, 1)
         return CartesianMove(
-            q, False, "the arm would flip to another branch; take a smaller step or move a joint"
+            q,
+            False,
+            f"that step swings {robot.labels[index]} {turn} deg at once; take a smaller one",
         )
     new_q = tuple(round(v, DECIMALS) for v in result.q)
     return CartesianMove(new_q, new_q != q)
+
+
+#: the last refused step and its answer (a held key repeats it many times a second)
+_last_refusal: list = [None, None]
+
+
+def _why(robot: Robot, result: IKResult, turning: bool) -> str:
+    """A refused step's reason, short enough for a status line: the part that
+    can't follow (position, or the orientation that should stay or turn) and
+    what stops it."""
+    cause, limited = result.cause, result.limited
+    if cause == ik_reasons.STOPPED:
+        return "no solution found"
+    if result.failed == POSITION or cause == ik_reasons.SINGULAR:
+        if cause == ik_reasons.OUT_OF_REACH:
+            distance = ik_reasons.length(robot, result.position_error)
+            return f"out of reach (closest found {distance} away)"
+        return ik_reasons.why_not_moved(robot, cause, limited)
+    # ORIENTATION: the position can be reached, but not with this orientation
+    if turning:
+        return ik_reasons.why_not_turned(robot, cause, limited)
+    if cause == ik_reasons.LIMIT:
+        return f"the tool can't keep its orientation there: {ik_reasons.at_limits(robot, limited)}"
+    return "the tool can't keep its orientation there"
+
+
+def singular_towards(robot: Robot, q, change: np.ndarray, position_only: bool) -> bool:
+    """Whether the arm at ``q`` is singular along ``change`` (a dimensionless
+    6-vector): the motion asked for lies along a direction it has lost here."""
+    rows = controllable_rows(robot).copy()
+    if position_only:
+        rows[3:] = False
+    jac = normalised(robot, jacobian(robot, q))
+    rank = min(robot.dof, int(rows.sum()))
+    return ik_reasons.lost_along(jac[rows], change[rows], rank)

@@ -13,6 +13,7 @@ The tests check both against the plain matrix product of the reference.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -93,9 +94,10 @@ def _translate(axis: str, amount: str) -> list[str]:
     return [f"p{k} += {amount}*{axis}{k}" for k in range(3)]
 
 
-def _joint_lines(robot: Robot, index: int) -> list[str]:
+def _joint_lines(robot: Robot, index: int, q: str = "") -> list[str]:
+    """Joint ``index``'s transform as lines on the state; its variable is ``q``."""
     joint = robot.joints[index]
-    q = f"q{index}"
+    q = q or f"q{index}"
     if joint.is_revolute:
         rot_z = [f"c = _cos({q}*{_DEG!r}); s = _sin({q}*{_DEG!r})", _rotate("x", "y", "c", "s")]
         move_d = _translate("z", repr(float(joint.d)))
@@ -152,6 +154,73 @@ def _compile(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     return namespace["chain"]
 
 
+#: a chain is compiled whole after this many calls; until then it runs as a
+#: sequence of per-joint steps (cached by their text), so an edit in the editor
+#: costs one small compile instead of a whole chain's (~10 ms for 32 joints)
+COMPILE_AFTER = 32
+
+
+@functools.lru_cache(maxsize=512)
+def _step(lines: tuple[str, ...]) -> Callable:
+    """``step(state, qi) -> state``: the chain's lines for one joint (or the
+    tool), the same operations in the same order, so the same bits."""
+    body = "".join(f"    {line}\n" for line in lines)
+    source = f"def step(state, qi):\n    {_STATE[1:-1]} = state\n{body}    return {_STATE}\n"
+    namespace: dict = {"_cos": math.cos, "_sin": math.sin}
+    exec(compile(source, "<dhsim joint>", "exec"), namespace)
+    return namespace["step"]
+
+
+def _matrix(s: tuple[float, ...]) -> list[float]:
+    """The state's 4×4 rows, flat (as ``_MATRIX``)."""
+    return [
+        s[0],
+        s[3],
+        s[6],
+        s[9],
+        s[1],
+        s[4],
+        s[7],
+        s[10],
+        s[2],
+        s[5],
+        s[8],
+        s[11],
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ]
+
+
+def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
+    """The chain of :func:`_compile` as a loop over cached per-joint steps."""
+    base = base_rotation(robot.base_z, robot.base_x)
+    start = (*(float(v) for v in base.T.reshape(-1)), 0.0, 0.0, 0.0)
+    steps = [_step(tuple(_joint_lines(robot, i, "qi"))) for i in range(robot.dof)]
+    if tool is not None:
+        steps.append(_step(tuple(_constant_lines(tool))))
+    dof = robot.dof
+
+    def chain(q):
+        values = tuple(q)
+        if len(values) != dof:
+            raise ValueError(f"got {len(values)}")
+        state = start
+        out = _matrix(state) if record else None
+        for step, value in zip(steps, values + (None,) * (len(steps) - dof), strict=True):
+            state = step(state, value)
+            if record:
+                out += _matrix(state)
+        if not record:
+            return state
+        if tool is None:
+            out += _matrix(state)  # the tool frame is the last joint's
+        return out
+
+    return chain
+
+
 class Kinematics:
     """Forward kinematics of one robot. Joint values are in the robot's units:
     degrees for revolute joints, the length unit for prismatic ones.
@@ -168,13 +237,17 @@ class Kinematics:
         self.tool = np.eye(4)
         self.tool[:3, :3] = rpy_matrix(*robot.tool.rpy)
         self.tool[:3, 3] = robot.tool.xyz
-        tool = None if robot.tool.is_identity else self.tool
-        self._pose = _compile(robot, tool, record=False)
-        self._frames = _compile(robot, tool, record=True)
+        self._tool = None if robot.tool.is_identity else self.tool
+        # [pose chain, frames chain] and how often each ran
+        self._chains = [_stepwise(robot, self._tool, False), _stepwise(robot, self._tool, True)]
+        self._calls = [0, 0]
 
-    def _call(self, fn: Callable, q: Sequence[float]):
+    def _call(self, record: bool, q: Sequence[float]):
+        calls = self._calls[record] = self._calls[record] + 1
+        if calls == COMPILE_AFTER:  # in use: worth the whole compile
+            self._chains[record] = _compile(self.robot, self._tool, record)
         try:
-            return fn(q)
+            return self._chains[record](q)
         except (ValueError, TypeError) as exc:
             raise DhsimError(
                 f"expected {self.dof} joint values for {self.robot.name!r}: {exc}"
@@ -182,23 +255,23 @@ class Kinematics:
 
     def state(self, q: Sequence[float]) -> tuple[float, ...]:
         """The end effector as 12 floats (x, y, z axes then origin): the fast path."""
-        return self._call(self._pose, q)
+        return self._call(False, q)
 
     def position(self, q: Sequence[float]) -> tuple[float, float, float]:
         """The end effector's world XYZ."""
-        s = self._call(self._pose, q)
+        s = self._call(False, q)
         return (s[9], s[10], s[11])
 
     def pose(self, q: Sequence[float]) -> np.ndarray:
         """The end effector's 4×4 world transform ``B · T1 ··· Tn · Tool``."""
-        x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2 = self._call(self._pose, q)
+        x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2 = self._call(False, q)
         return np.array(
             ((x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2), (0.0, 0.0, 0.0, 1.0))
         )
 
     def frames(self, q: Sequence[float]) -> np.ndarray:
         """World transforms of frames 0..n and the tool: shape (n + 2, 4, 4)."""
-        flat = self._call(self._frames, q)
+        flat = self._call(True, q)
         return np.fromiter(flat, float, len(flat)).reshape(-1, 4, 4)
 
     def end_effector(self, q: Sequence[float]) -> EndEffector:

@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import contextlib
+import errno
+import os
 from pathlib import Path
 
 from dhsim_tui.core.errors import RobotFileError
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import load
+from dhsim_tui.core.text import printable
+from dhsim_tui.core.validation import fmt
+from dhsim_tui.core.workspace import reach
 
 DEFAULT_ROBOT = "puma560"
 
@@ -34,19 +39,60 @@ def bundled_path(name: str) -> Path | None:
 
 
 def resolve(argument: str) -> Path:
-    """A robot argument is an existing path or the name of a bundled robot."""
+    """A robot argument is an existing path or the name of a bundled robot.
+
+    Every way this can fail is a :class:`RobotFileError` that quotes the
+    argument with control characters escaped: an empty argument, a name too
+    long for the file system, a folder on the way that cannot be read, a
+    relative path after the working folder was deleted.
+    """
+    if not argument.strip():
+        raise RobotFileError(
+            f"the robot argument {printable(repr(argument))} is empty: give a robot file "
+            f"(.toml) or a bundled robot's name ({', '.join(bundled_names())})"
+        )
+    shown = printable(argument)
     path = Path(argument)
     with contextlib.suppress(RuntimeError):  # "~someone" with no such user: as written
         path = path.expanduser()
-    if path.exists():
-        return path
+    try:
+        if path.exists():
+            return path
+        problem = None
+    except OSError as exc:  # ENAMETOOLONG, EACCES on a folder on the way, ELOOP ...
+        problem = _why(exc)
+    except ValueError:  # a NUL byte in the path
+        problem = "a path cannot hold a NUL character"
     found = bundled_path(argument)
     if found is not None:
         return found
+    if problem is not None:
+        raise RobotFileError(f"{shown}: cannot read: {problem}")
+    if not path.is_absolute() and not _working_folder_exists():
+        raise RobotFileError(
+            f"{shown}: no such file: the working folder was deleted, so a relative "
+            "path finds nothing; give the full path or a bundled robot's name"
+        )
     raise RobotFileError(
-        f"{argument}: no such file, and no bundled robot has that name "
+        f"{shown}: no such file, and no bundled robot has that name "
         f"(bundled: {', '.join(bundled_names())})"
     )
+
+
+def _why(exc: OSError) -> str:
+    if exc.errno == errno.ENAMETOOLONG:
+        return "the path is too long (255 bytes per name, 4096 in all)"
+    if exc.errno == errno.EACCES:
+        return "permission denied (a folder on the way cannot be read)"
+    return printable(exc.strerror or str(exc))
+
+
+def _working_folder_exists() -> bool:
+    try:
+        os.getcwd()
+    except OSError:
+        return False
+    return True
 
 
 def load_robot(argument: str | None = None) -> tuple[Robot, Path]:
@@ -56,11 +102,11 @@ def load_robot(argument: str | None = None) -> tuple[Robot, Path]:
 
 
 def describe(robot: Robot) -> str:
-    """The one-line summary ``dhsim check`` and ``dhsim list`` print."""
-    from dhsim_tui.core.validation import fmt
-    from dhsim_tui.core.workspace import reach
-
+    """The one-line summary ``dhsim check`` and ``dhsim list`` print. The reach
+    is a sum of floats, shown to 12 significant digits: finer than any robot is
+    built, and without the sum's last-bit noise (1033.9500000000001)."""
+    total = float(f"{reach(robot):.12g}")
     return (
-        f"{robot.name}: {robot.dof} joints, {robot.type_string}, {robot.convention} D-H, "
-        f"reach {fmt(round(reach(robot), 3))} {robot.units}"
+        f"{printable(robot.name)}: {robot.dof} joints, {robot.type_string}, "
+        f"{robot.convention} D-H, reach {fmt(total)} {robot.units}"
     )

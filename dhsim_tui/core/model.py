@@ -1,7 +1,8 @@
 """The robot model: joints, base, tool and named poses as frozen dataclasses.
 
-A :class:`Robot` is immutable and always valid; it is built through
-:func:`make_robot` (or the file loader), which checks every field. Editing
+A :class:`Robot` is immutable and always valid: building one checks every
+field (:func:`dhsim_tui.core.validation.check_robot`), so a robot from a file,
+from the editor or from code is refused the same way, naming the field. Editing
 means building a new robot, so the one in memory is never half-changed.
 Angles are in degrees and lengths in the robot's unit throughout.
 """
@@ -9,42 +10,53 @@ Angles are in degrees and lengths in the robot's unit throughout.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TYPE_CHECKING, Literal
 
 from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.kinematics import Kinematics
+from dhsim_tui.core.text import printable
+from dhsim_tui.core.units import (
+    AXES,
+    CONVENTIONS,
+    JOINT_TYPES,
+    LENGTH_DECIMALS,
+    MAX_ABS,
+    MAX_JOINTS,
+    MIN_JOINTS,
+    MIN_LENGTH_MM,
+    PRISMATIC_LIMIT_MM,
+    REVOLUTE_LIMIT_DEG,
+    UNITS,
+    JointType,
+    default_limits,
+    min_length,
+    mm_to_unit,
+)
+from dhsim_tui.core.validation import check_joint_values, check_robot
 
-if TYPE_CHECKING:
-    from dhsim_tui.core.kinematics import Kinematics
-
-JointType = Literal["revolute", "prismatic"]
-JOINT_TYPES: tuple[str, ...] = ("revolute", "prismatic")
-CONVENTIONS: tuple[str, ...] = ("standard", "modified")
-#: millimetres per unit
-UNITS: dict[str, float] = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4}
-AXES: tuple[str, ...] = ("+x", "-x", "+y", "-y", "+z", "-z")
-MIN_JOINTS = 1
-MAX_JOINTS = 32
-#: decimals shown for a length in each unit (about 0.01 mm); degrees get 2
-LENGTH_DECIMALS: dict[str, int] = {"mm": 2, "cm": 3, "m": 5, "in": 4}
-#: the largest magnitude any number may have (degrees or robot units)
-MAX_ABS = 1e6
-REVOLUTE_LIMIT_DEG = 180.0
-PRISMATIC_LIMIT_MM = 400.0
-
-
-def mm_to_unit(value_mm: float, units: str) -> float:
-    """Convert a length given in millimetres to the robot's unit."""
-    return value_mm / UNITS[units]
-
-
-def default_limits(joint_type: str, units: str) -> tuple[float, float]:
-    """The seed's default range: ±180 deg, or ±400 mm in the robot's unit."""
-    if joint_type == "revolute":
-        return (-REVOLUTE_LIMIT_DEG, REVOLUTE_LIMIT_DEG)
-    span = mm_to_unit(PRISMATIC_LIMIT_MM, units)
-    return (-span, span)
+#: the vocabulary lives in :mod:`dhsim_tui.core.units`; it is re-exported here,
+#: where most callers look for it
+__all__ = [
+    "AXES",
+    "CONVENTIONS",
+    "JOINT_TYPES",
+    "LENGTH_DECIMALS",
+    "MAX_ABS",
+    "MAX_JOINTS",
+    "MIN_JOINTS",
+    "MIN_LENGTH_MM",
+    "PRISMATIC_LIMIT_MM",
+    "REVOLUTE_LIMIT_DEG",
+    "UNITS",
+    "Joint",
+    "JointType",
+    "Robot",
+    "Tool",
+    "default_limits",
+    "min_length",
+    "mm_to_unit",
+]
 
 
 @dataclass(frozen=True)
@@ -84,8 +96,6 @@ class Joint:
 
     def with_home(self, value: float) -> Joint:
         """This joint with its variable's table value replaced."""
-        from dataclasses import replace
-
         return replace(self, **{self.variable: float(value)})
 
 
@@ -125,8 +135,6 @@ class Robot:
     poses: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
     def __post_init__(self) -> None:
-        from dhsim_tui.core.validation import check_robot
-
         check_robot(self)
 
     # -- derived facts ---------------------------------------------------
@@ -164,8 +172,11 @@ class Robot:
         for pose_name, values in self.poses:
             if pose_name == name:
                 return values
-        known = ", ".join(self.pose_names) or "none"
-        raise DhsimError(f"robot {self.name!r} has no pose named {name!r} (poses: {known})")
+        known = printable(", ".join(self.pose_names) or "none")
+        raise DhsimError(
+            f"robot {printable(repr(self.name))} has no pose named {printable(repr(name))} "
+            f"(poses: {known})"
+        )
 
     def mm(self, value_mm: float) -> float:
         """A length given in millimetres, in this robot's unit."""
@@ -174,12 +185,8 @@ class Robot:
     @cached_property
     def kinematics(self) -> Kinematics:
         """Forward kinematics compiled for this robot (built once, on first use)."""
-        from dhsim_tui.core.kinematics import Kinematics
-
         return Kinematics(self)
 
     def check_q(self, q: object) -> tuple[float, ...]:
         """Validate a joint vector: right length, finite numbers, within limits."""
-        from dhsim_tui.core.validation import check_joint_values
-
         return check_joint_values(self, q)

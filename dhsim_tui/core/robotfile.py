@@ -2,25 +2,37 @@
 
 Loading is strict: every key is checked for type and spelling and every
 problem is reported as one :class:`RobotFileError` naming the file and the
-field. Saving is atomic (temporary file, fsync, rename), and
-``load(save(robot)) == robot`` exactly.
+field, with any control character from the file shown escaped (``\\x1b``).
+A UTF-8 byte order mark is accepted.
+
+Saving is atomic (temporary file, fsync, rename) and ``load(save(robot)) ==
+robot`` exactly. Saving over a robot file keeps the user's comments and
+layout (:mod:`dhsim_tui.core.tomledit`), its owner, mode and byte order mark;
+a read-only file is refused, and ``expect`` refuses to overwrite a file that
+changed on disk since it was read (:class:`FileStamp`).
 """
 
 from __future__ import annotations
 
-import contextlib
 import difflib
+import hashlib
 import os
-import tempfile
+import stat
 import tomllib
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
+from types import EllipsisType
 from typing import Any
 
 import tomli_w
 
+from dhsim_tui.core.atomicfile import file_error as _error
+from dhsim_tui.core.atomicfile import read_file, remove_stale_temps, write_atomic
 from dhsim_tui.core.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model import Joint, Robot, Tool, default_limits
+from dhsim_tui.core.text import printable
+from dhsim_tui.core.tomledit import update_text
 from dhsim_tui.core.validation import check_choice, check_number
 
 TOP_KEYS = (
@@ -39,6 +51,31 @@ JOINT_REQUIRED = ("theta", "d", "a", "alpha")
 TOOL_KEYS = ("xyz", "rpy")
 #: robot files larger than this are refused before parsing (a robot is < 10 kB)
 MAX_FILE_BYTES = 1_000_000
+BOM = b"\xef\xbb\xbf"
+
+
+class FileChangedError(RobotFileError):
+    """The file on disk is not the one the robot was read from (or expected absent)."""
+
+
+class ReadOnlyError(RobotFileError):
+    """The file has no write permission; refused whoever runs dhsim."""
+
+
+@dataclass(frozen=True)
+class FileStamp:
+    """What a file held when it was read or written."""
+
+    path: Path  # the real file (symlinks resolved)
+    mtime_ns: int
+    size: int
+    digest: str  # sha256 of the bytes
+
+    def __fspath__(self) -> str:  # a stamp names its file: load(save(...)) works
+        return str(self.path)
+
+
+# -- reading ---------------------------------------------------------------------
 
 
 def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) -> None:
@@ -48,12 +85,12 @@ def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) 
             hint = (
                 f" (did you mean {close[0]!r}?)" if close else f" (allowed: {', '.join(allowed)})"
             )
-            raise DhsimError(f"{where}{key}: unknown key{hint}")
+            raise DhsimError(printable(f"{where}{key}: unknown key{hint}"))
 
 
 def _table(value: object, where: str) -> Mapping[str, Any]:
     if not isinstance(value, Mapping):
-        raise DhsimError(f"{where}: expected a table")
+        raise DhsimError(printable(f"{where}: expected a table"))
     return value
 
 
@@ -110,11 +147,10 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
         )
     poses: list[tuple[str, tuple[float, ...]]] = []
     for name, values in _table(data.get("poses", {}), "poses").items():
+        where = printable(f"poses.{name}")
         if not isinstance(values, list):
-            raise DhsimError(f"poses.{name}: expected a list of {len(joints)} numbers")
-        numbers = tuple(
-            check_number(v, f"poses.{name}[{i}]") for i, v in enumerate(values, start=1)
-        )
+            raise DhsimError(f"{where}: expected a list of {len(joints)} numbers")
+        numbers = tuple(check_number(v, f"{where}[{i}]") for i, v in enumerate(values, start=1))
         poses.append((name, numbers))
     base_height = data.get("base_height", 0.0)
     return Robot(
@@ -132,53 +168,67 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
 
 def loads(text: str, source: str = "<robot>") -> Robot:
     """Parse and validate robot TOML; errors start with ``source``."""
+    text = text.removeprefix("\ufeff")  # a byte order mark, as some editors write
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise RobotFileError(f"{source}: not valid TOML: {exc}") from None
+        raise _error(f"{source}: not valid TOML: {exc}") from None
     except RecursionError:  # tomllib recurses into nested arrays and inline tables
-        raise RobotFileError(f"{source}: not valid TOML: nested too deeply") from None
+        raise _error(f"{source}: not valid TOML: nested too deeply") from None
     except ValueError as exc:  # e.g. an integer of more than 4300 digits
-        raise RobotFileError(f"{source}: not valid TOML: {exc}") from None
+        raise _error(f"{source}: not valid TOML: {exc}") from None
     try:
         return robot_from_dict(data)
     except DhsimError as exc:
-        raise RobotFileError(f"{source}: {exc}") from None
+        raise _error(f"{source}: {exc}") from None
+
+
+def _decode(raw: bytes, path: Path) -> str:
+    try:
+        return raw.removeprefix(BOM).decode("utf-8")
+    except UnicodeDecodeError as exc:
+        start = exc.start + (len(BOM) if raw.startswith(BOM) else 0)
+        raise _error(f"{path}: not a text file (invalid UTF-8 at byte {start})") from None
+
+
+def _real(path: Path) -> Path:
+    return Path(os.path.realpath(path))
 
 
 def load(path: str | os.PathLike[str]) -> Robot:
     """Read a robot file; every failure is a RobotFileError naming the file."""
+    return load_with_stamp(path)[0]
+
+
+def load_with_stamp(path: str | os.PathLike[str]) -> tuple[Robot, FileStamp]:
+    """Like :func:`load`, plus the stamp of the very bytes parsed (for ``save(expect=)``).
+    Temporary files left next to it by a killed save are removed."""
+    path = Path(path)
+    raw, info = read_file(path, MAX_FILE_BYTES)
+    robot = loads(_decode(raw, path), str(path))
+    real = _real(path)
+    remove_stale_temps(real)
+    return robot, FileStamp(real, info.st_mtime_ns, len(raw), hashlib.sha256(raw).hexdigest())
+
+
+def read_stamp(path: str | os.PathLike[str]) -> FileStamp | None:
+    """The stamp of what ``path`` holds now; None when there is no such file."""
     path = Path(path)
     try:
-        if path.is_dir():
-            raise RobotFileError(f"{path}: is a folder, not a robot file")
-        if path.exists() and not path.is_file():
-            raise RobotFileError(f"{path}: is not a regular file (a device or a pipe?)")
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise RobotFileError(f"{path}: {size} bytes is too large for a robot file")
-        raw = path.read_bytes()
-    except FileNotFoundError:
-        raise RobotFileError(f"{path}: no such file") from None
-    except PermissionError:
-        raise RobotFileError(f"{path}: permission denied") from None
-    except OSError as exc:
-        raise RobotFileError(f"{path}: cannot read: {exc.strerror or exc}") from None
+        raw, info = read_file(path, MAX_FILE_BYTES)
     except RobotFileError:
+        if not os.path.lexists(path) or (path.is_symlink() and not path.exists()):
+            return None
         raise
-    except ValueError as exc:  # e.g. a NUL byte in the path
-        raise RobotFileError(f"{path}: cannot read: {exc}") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise RobotFileError(
-            f"{path}: not a text file (invalid UTF-8 at byte {exc.start})"
-        ) from None
-    return loads(text, str(path))
+    return FileStamp(_real(path), info.st_mtime_ns, len(raw), hashlib.sha256(raw).hexdigest())
 
 
-def robot_to_dict(robot: Robot) -> dict[str, Any]:
-    """The TOML document for a robot; every field written, so it reads back equal."""
+# -- writing ---------------------------------------------------------------------
+
+
+def robot_to_dict(robot: Robot, *, full: bool = False) -> dict[str, Any]:
+    """The TOML document for a robot; every field written, so it reads back equal.
+    ``full`` also writes an identity tool and an empty poses table."""
     data: dict[str, Any] = {
         "name": robot.name,
         "units": robot.units,
@@ -187,82 +237,154 @@ def robot_to_dict(robot: Robot) -> dict[str, Any]:
         "base_z": robot.base_z,
         "base_x": robot.base_x,
     }
-    if not robot.tool.is_identity:
-        data["tool"] = {"xyz": list(robot.tool.xyz), "rpy": list(robot.tool.rpy)}
-    if robot.poses:
-        data["poses"] = {name: list(values) for name, values in robot.poses}
+    if full or not robot.tool.is_identity:
+        data["tool"] = {"xyz": _floats(robot.tool.xyz), "rpy": _floats(robot.tool.rpy)}
+    if full or robot.poses:
+        data["poses"] = {name: _floats(values) for name, values in robot.poses}
     data["joints"] = [
-        {
-            "type": j.type,
-            "theta": j.theta,
-            "d": j.d,
-            "a": j.a,
-            "alpha": j.alpha,
-            "min": j.min,
-            "max": j.max,
-        }
+        {"type": j.type} | dict(zip(JOINT_KEYS[1:], _floats(_values(j)), strict=True))
         for j in robot.joints
     ]
     return data
+
+
+def _floats(values) -> list[float]:
+    return [float(v) for v in values]
+
+
+def _values(joint: Joint) -> tuple[float, ...]:
+    return (joint.theta, joint.d, joint.a, joint.alpha, joint.min, joint.max)
+
+
+def _defaults(robot: Robot) -> dict[str, Any]:
+    """What a file may leave out, for this robot (limits depend on type and unit)."""
+    return {
+        "units": "mm",
+        "convention": "standard",
+        "base_height": 0.0,
+        "base_z": "+z",
+        "base_x": "+x",
+        "tool": {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]},
+        "poses": {},
+        "joints": [
+            dict(zip(("min", "max"), default_limits(j.type, robot.units), strict=True))
+            | {"type": "revolute"}
+            for j in robot.joints
+        ],
+    }
 
 
 def dumps(robot: Robot) -> str:
     return tomli_w.dumps(robot_to_dict(robot), multiline_strings=False)
 
 
-def save(robot: Robot, path: str | os.PathLike[str]) -> Path:
-    """Write atomically: a temporary file in the same folder, flushed, fsynced,
-    then renamed over ``path``. On any failure the old file is untouched."""
-    path = Path(path)
+def _reads_back(text: str | None, robot: Robot) -> bool:
+    try:
+        return text is not None and loads(text) == robot
+    except RobotFileError:
+        return False
+
+
+def render(robot: Robot, base_text: str | None = None) -> str:
+    """The text to save: ``base_text`` updated in place when it is TOML (its
+    comments and layout kept), else a fresh document. Always reads back as ``robot``."""
+    if base_text is not None and len(base_text) <= MAX_FILE_BYTES:
+        base = base_text.removeprefix("\ufeff")
+        try:
+            current = robot_to_dict(loads(base), full=True)
+        except RobotFileError:
+            current = None
+        try:
+            tomllib.loads(base)
+            data, defaults = robot_to_dict(robot, full=True), _defaults(robot)
+            text = update_text(base, data, defaults, current, ordered=("poses",))
+        except Exception:  # tomlkit fails in many ways; then a fresh document is written
+            text = None
+        if _reads_back(text, robot):
+            return text  # type: ignore[return-value]
     text = dumps(robot)
-    if path.is_symlink():  # write the file the link points to, keep the link
-        path = path.resolve()
-    folder = path.parent if str(path.parent) else Path(".")
-    if path.is_dir():
-        raise RobotFileError(f"{path}: is a folder, not a robot file")
-    tmp_name = None
+    if not _reads_back(text, robot):
+        raise RobotFileError(f"cannot save {printable(robot.name)!r}: it would not read back")
+    return text
+
+
+def save(
+    robot: Robot,
+    path: str | os.PathLike[str],
+    *,
+    expect: FileStamp | EllipsisType | None = ...,
+    base_text: str | None = None,
+) -> FileStamp:
+    """Write atomically: a temporary file in the same folder, flushed, fsynced,
+    then renamed over ``path``. On any failure the old file is untouched.
+
+    ``expect``: ``...`` does not check; None means the file must not exist;
+    a stamp means the file must still hold what it held then
+    (:class:`FileChangedError` otherwise). An existing file is updated in
+    place (comments kept); with no file, ``base_text`` is the starting point.
+    Returns the stamp of what was written."""
+    given = Path(path)
+    target = _real(given) if given.is_symlink() else given  # write the file, keep the link
+    existing = _existing(target, given)
+    _check_expect(given, expect, existing)
+    raw = existing[0] if existing else None
+    old_text = _text_or_none(raw)
+    text = render(robot, old_text if _is_toml(old_text) else base_text)
+    had_bom = raw.startswith(BOM) if raw is not None else (base_text or "").startswith("\ufeff")
+    data = (BOM if had_bom else b"") + text.encode("utf-8")
+    remove_stale_temps(target)
+    info = write_atomic(target, given, data, existing[1] if existing else None)
+    return FileStamp(_real(target), info.st_mtime_ns, len(data), hashlib.sha256(data).hexdigest())
+
+
+def _existing(target: Path, given: Path) -> tuple[bytes, os.stat_result] | None:
+    """The bytes and status of the file a save replaces (None: there is none)."""
     try:
-        fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-        os.chmod(tmp_name, _mode_for(path))  # mkstemp makes it private (0600)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp_name, path)
-        tmp_name = None
-        _fsync_folder(folder)
+        info = os.stat(target)
     except FileNotFoundError:
-        raise RobotFileError(f"{path}: cannot save: folder {folder} does not exist") from None
-    except PermissionError:
-        raise RobotFileError(f"{path}: cannot save: permission denied") from None
-    except OSError as exc:
-        raise RobotFileError(f"{path}: cannot save: {exc.strerror or exc}") from None
-    finally:
-        if tmp_name is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp_name)
-    return path
+        return None
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or exc
+        raise _error(f"{given}: cannot save: {reason}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise _error(f"{given}: is a folder, not a robot file")
+    if not stat.S_ISREG(info.st_mode):
+        raise _error(f"{given}: cannot save: not a regular file (a device or a pipe?)")
+    if not info.st_mode & 0o222 or not os.access(target, os.W_OK):
+        raise _error(
+            f"{given}: the file is read-only (no write permission); "
+            "save the robot under another name",
+            ReadOnlyError,
+        )
+    return read_file(target, MAX_FILE_BYTES)
 
 
-def _mode_for(path: Path) -> int:
-    """Keep an existing file's permissions; a new file gets the usual 0666 & ~umask."""
-    try:
-        return path.stat().st_mode & 0o7777
-    except OSError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
-
-
-def _fsync_folder(folder: Path) -> None:
-    """Make the rename itself durable (where the platform allows it)."""
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:
+def _check_expect(given: Path, expect: object, existing: tuple | None) -> None:
+    if expect is ...:
         return
+    changed = f"{given}: the file changed on disk since it was opened"
+    if expect is None:
+        if existing is not None:
+            raise _error(f"{changed}: a file of that name exists now", FileChangedError)
+        return
+    if not isinstance(expect, FileStamp):
+        raise TypeError(f"expect: a FileStamp, None or ..., not {type(expect).__name__}")
+    if existing is None:
+        raise _error(f"{changed}: it is gone (deleted or renamed)", FileChangedError)
+    raw = existing[0]
+    if (len(raw), hashlib.sha256(raw).hexdigest()) != (expect.size, expect.digest):
+        raise _error(f"{changed} (another program wrote to it)", FileChangedError)
+
+
+def _text_or_none(raw: bytes | None) -> str | None:
     try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
+        return raw.removeprefix(BOM).decode("utf-8") if raw is not None else None
+    except UnicodeDecodeError:
+        return None
+
+
+def _is_toml(text: str | None) -> bool:
+    try:
+        return text is not None and isinstance(tomllib.loads(text), dict)
+    except (ValueError, RecursionError):  # TOMLDecodeError is a ValueError
+        return False

@@ -8,11 +8,13 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.model import (
+from dhsim_tui.core.text import control_character, printable
+from dhsim_tui.core.units import (
     AXES,
     CONVENTIONS,
     JOINT_TYPES,
@@ -20,15 +22,39 @@ from dhsim_tui.core.model import (
     MAX_JOINTS,
     MIN_JOINTS,
     UNITS,
+    min_length,
 )
 
 if TYPE_CHECKING:
     from dhsim_tui.core.model import Joint, Robot
 
 
+#: a pose name that needs no quotes after ``poses.`` (a TOML bare key)
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
 def fmt(value: float) -> str:
-    """A number as people write it: ``431.8``, ``-90``, ``1e+06``."""
-    return f"{value:g}"
+    """A number as people write it, and whole: ``431.8``, ``-90``, ``1e+06``,
+    ``160.0000000001``. The short ``:g`` form is used only when it reads back
+    as the same number; otherwise the shortest form that does (``repr``).
+    Zero is ``0``, whatever its sign."""
+    if value == 0:
+        return "0"
+    short = f"{value:g}"
+    if float(short) == value:
+        return short
+    text = repr(float(value))
+    return text.removesuffix(".0")
+
+
+def pose_where(name: str) -> str:
+    """How a pose is named in messages: ``poses.ready``, or quoted (and with
+    control characters escaped) when the name is not a bare word:
+    ``poses."x\\x1b[2J"``."""
+    if _BARE_KEY.fullmatch(name):
+        return f"poses.{name}"
+    quoted = printable(name).replace('"', '\\"')
+    return f'poses."{quoted}"'
 
 
 def check_number(value: object, where: str) -> float:
@@ -84,11 +110,25 @@ def perpendicular_axes(axis: str) -> tuple[str, ...]:
     return tuple(a for a in AXES if a[1] != axis[1])
 
 
+def check_length(value: float, where: str, units: str) -> None:
+    """A length is 0 or at least one nanometre (:data:`MIN_LENGTH_MM`): a
+    smaller one cannot be computed with (it underflows in products)."""
+    bound = min_length(units)
+    if value != 0 and abs(value) < bound * (1 - 1e-12):  # tolerance: unit conversions
+        raise DhsimError(
+            f"{where}: {fmt(value)} {units} is too small to compute with; "
+            f"a length is 0 or at least 1 nanometre ({fmt(bound)} {units})"
+        )
+
+
 def check_joint(joint: Joint, number: int, units: str) -> None:
     where = f"joints[{number}]"
     check_choice(joint.type, JOINT_TYPES, f"{where}.type")
     for name in ("theta", "d", "a", "alpha", "min", "max"):
         check_number(getattr(joint, name), f"{where}.{name}")
+    lengths = ("d", "a") if joint.is_revolute else ("d", "a", "min", "max")
+    for name in lengths:
+        check_length(getattr(joint, name), f"{where}.{name}", units)
     unit = joint.unit(units)
     if joint.min >= joint.max:
         raise DhsimError(
@@ -101,26 +141,25 @@ def check_joint(joint: Joint, number: int, units: str) -> None:
         )
 
 
-def check_text(value: str, where: str) -> None:
-    """Text a file can hold: encodable as UTF-8, no control characters."""
-    try:
-        value.encode("utf-8")
-    except UnicodeEncodeError:
-        raise DhsimError(f"{where}: contains characters that are not valid text") from None
-    if any(ord(ch) < 32 or ord(ch) == 127 for ch in value):
-        raise DhsimError(f"{where}: control characters are not allowed")
+def check_text(value: str, where: str, what: str) -> None:
+    """A name a terminal can show as it is: no control character (C0, DEL, C1,
+    bidi overrides, zero-width marks; lone surrogates, which UTF-8 cannot hold)."""
+    found = control_character(value)
+    if found is not None:
+        raise DhsimError(f"{where}: {what} may not hold control characters ({found})")
 
 
 def check_robot(robot: Robot) -> None:
     """Raise :class:`DhsimError` on the first thing that makes ``robot`` invalid."""
     if not isinstance(robot.name, str) or not robot.name.strip():
         raise DhsimError("name: a robot needs a non-empty name")
-    check_text(robot.name, "name")
+    check_text(robot.name, "name", "a robot name")
     check_choice(robot.units, UNITS, "units")
     check_choice(robot.convention, CONVENTIONS, "convention")
     height = check_number(robot.base_height, "base_height")
     if height < 0:
         raise DhsimError(f"base_height: {fmt(height)} is below the floor; it must be >= 0")
+    check_length(height, "base_height", robot.units)
     check_choice(robot.base_z, AXES, "base_z")
     check_choice(robot.base_x, AXES, "base_x")
     if robot.base_z[1] == robot.base_x[1]:
@@ -134,6 +173,8 @@ def check_robot(robot: Robot) -> None:
             raise DhsimError(f"tool.{key}: expected 3 numbers, got {len(values)}")
         for i, v in enumerate(values, start=1):
             check_number(v, f"tool.{key}[{i}]")
+            if key == "xyz":
+                check_length(v, f"tool.xyz[{i}]", robot.units)
     count = len(robot.joints)
     if not MIN_JOINTS <= count <= MAX_JOINTS:
         raise DhsimError(
@@ -143,10 +184,10 @@ def check_robot(robot: Robot) -> None:
         check_joint(joint, number, robot.units)
     seen: set[str] = set()
     for name, values in robot.poses:
-        where = f"poses.{name}"
         if not isinstance(name, str) or not name.strip():
             raise DhsimError("poses: a pose needs a non-empty name")
-        check_text(name, f"poses.{name!r}")
+        where = pose_where(name)
+        check_text(name, where, "a pose name")
         if name in seen:
             raise DhsimError(f"{where}: the name is used twice")
         seen.add(name)

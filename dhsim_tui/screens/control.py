@@ -3,22 +3,23 @@
 Data flows one way: a key changes the joint vector; the screen asks the core
 for the frames and the read-out, asks the scene layer for the projected
 views, and hands the results to the widgets, which only draw.
+
+Keys change the state at once (every key counts, none is dropped), but the
+drawing is coalesced: a change marks the screen dirty and queues one redraw
+behind the keys already waiting, so a burst of auto-repeat draws once, not
+once per key, and never builds a backlog.
 """
 
 from __future__ import annotations
 
 from rich.text import Text
-from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
 from textual.events import Resize
-from textual.markup import escape
 from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
 
-from dhsim_tui.core import editing
-from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.jacobian import dexterity, jacobian_from_frames
 from dhsim_tui.core.jog import (
     CARTESIAN_ROWS,
@@ -32,12 +33,21 @@ from dhsim_tui.core.jog import (
 )
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
+from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene import VIEWS, build_wireframe
-from dhsim_tui.screens.control_keys import CONTROL_BINDINGS, HELP_NOTES, KEYS_LEGEND, help_rows
+from dhsim_tui.screens.control_entry import ValueFlows
+from dhsim_tui.screens.control_keys import (
+    CARTESIAN_ACTIONS,
+    CONTROL_BINDINGS,
+    HELP_NOTES,
+    JOINT_ACTIONS,
+    KEYS_LEGEND,
+    help_rows,
+)
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.widgets.cartesian_panel import TITLE as CARTESIAN_TITLE
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
@@ -49,22 +59,23 @@ MIN_SIZE = (60, 18)
 TALL_FOR_BOTH = 32
 
 
-class ControlScreen(SmoothMotion, Screen):
+class ControlScreen(ValueFlows, SmoothMotion, Screen):
     """Joint stepping, home, poses, read-outs and the three views.
 
     | Key | Action |
     | :- | :- |
-    | up / down | Select a joint |
-    | left / right | Step the joint (shift: ten steps) |
+    | up / down | Select a joint (Cartesian: an axis) |
+    | left / right | Step the joint, or move the tool (shift: ten steps) |
     | [ / ] | Smaller / larger step |
-    | enter | Type the joint's exact value |
+    | enter | Type the joint's exact value (Cartesian: a target) |
     | h / home | Every joint home (the D-H table's values) |
     | p | Next named pose |
     | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
     | tab / 1 2 3 | Show the top, front or side view |
     | c | Joint <-> Cartesian jogging (X, Y, Z, turns about the tool axes) |
     | P | Save the current joints as a named pose |
-    | m | Smooth motion on or off |
+    | m | Smooth motion on or off (the footer shows which) |
+    | escape | Stop a smooth move |
     | e | Edit the robot in a table |
     | ? | Help |
     | q | Quit |
@@ -90,6 +101,8 @@ class ControlScreen(SmoothMotion, Screen):
         self._pose_cursor = -1
         self._said: tuple[str, bool] = ("", False)
         self._ready = False
+        self._dirty = False  # q changed and the widgets don't show it yet
+        self.redraws = 0  # how many times the pose was drawn (tests, benches)
         self.set_reactive(ControlScreen.q, robot.home)
 
     # -- layout -------------------------------------------------------------
@@ -98,7 +111,8 @@ class ControlScreen(SmoothMotion, Screen):
         with Container(id="layout"):
             with Vertical(id="side-panel"):
                 panel = JointPanel(id="joints")
-                panel.border_title = escape(f"{robot.name} · {robot.type_string}")
+                # file content: control characters escaped, never markup
+                panel.border_title = Text(printable(f"{robot.name} · {robot.type_string}"))
                 with panel:
                     for i, (joint, value) in enumerate(
                         zip(robot.joints, self.q, strict=True), start=1
@@ -109,14 +123,14 @@ class ControlScreen(SmoothMotion, Screen):
                 yield Static("", id="status")
             yield ViewsPanel(self.renderer, KEYS_LEGEND, id="views")
         yield Static("", id="too-small")
-        yield Footer()
+        yield Footer(compact=True)
 
     def on_mount(self) -> None:
         self._views = self.query_one(ViewsPanel)
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
         self._cartesian_panel = self.query_one(CartesianPanel)
-        self._cartesian_panel.border_title = "Cartesian (world XYZ, tool turns)"
+        self._cartesian_panel.border_title = CARTESIAN_TITLE
         self._ready = True
         self._joints.select(self.selected)
         self._update_step_caption()
@@ -139,9 +153,29 @@ class ControlScreen(SmoothMotion, Screen):
             )
 
     # -- the one-way flow: q -> core -> scene -> widgets -----------------------
+    def _invalidate(self) -> None:
+        """q changed: draw it once the keys already queued are handled."""
+        if not self._dirty:
+            self._dirty = True
+            self.call_later(self._redraw)
+
+    def _redraw(self) -> None:
+        """Draw the latest q if it isn't drawn yet (also before reading ``pose``)."""
+        if self._dirty:
+            self._refresh_pose()
+
+    def _show_now(self) -> None:
+        """Show the pose panels now (a changed read-out, row or mode)."""
+        if self._dirty:
+            self._refresh_pose()
+        else:
+            self._show_pose()
+
     def _refresh_pose(self) -> None:
         if not self._ready:  # a key that arrived before the screen was mounted
             return
+        self._dirty = False
+        self.redraws += 1
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])
         self.dexterity = dexterity(self.robot, jac=jacobian_from_frames(self.robot, frames))
@@ -156,28 +190,33 @@ class ControlScreen(SmoothMotion, Screen):
             self.pose, self.readout, self.robot.units, self.dexterity, self.warnings
         )
         if self.cartesian:
-            self._cartesian_panel.show(self.pose.xyz, self.cartesian_row, self.robot.units)
+            self._cartesian_panel.show(
+                self.pose.xyz, self.pose.rpy, self.cartesian_row, self.robot.units
+            )
 
     def watch_q(self) -> None:
         self._commanded = None  # any other move ends a Cartesian run (_jog sets it again)
-        self._refresh_pose()
+        self._invalidate()
 
     def watch_readout(self) -> None:
         if not self._ready:
             return
-        self._show_pose()
+        self._show_now()
 
     def watch_cartesian(self) -> None:
         if not self._ready:
             return
         self.set_class(self.cartesian, "-cartesian")
+        # one ▶ on screen: the Cartesian row's, or the joint's
+        self._joints.select(-1 if self.cartesian else self.selected)
         self._update_step_caption()
-        self._show_pose()
+        self._show_now()
+        self.refresh_bindings()  # the arrows' labels in the footer
 
     def watch_selected(self) -> None:
         if not self._ready:
             return
-        self.query_one(JointPanel).select(self.selected)
+        self._joints.select(-1 if self.cartesian else self.selected)
         self._update_step_caption()
 
     def watch_step_level(self) -> None:
@@ -195,45 +234,59 @@ class ControlScreen(SmoothMotion, Screen):
             row = self.cartesian_row
             unit = self.robot.units if row < 3 else "deg"
             step = cartesian_step_size(self.robot, row, self.step_level)
-            self._cartesian_panel.border_subtitle = f"step {fmt(step)} {unit}  [ ]"
+            self._cartesian_panel.border_subtitle = Text(f"step {fmt(step)} {unit}  [ ]")
             return
         joint = self.robot.joints[self.selected]
         unit = joint.unit(self.robot.units)
         step = step_size(self.robot, self.selected, self.step_level)
-        self.query_one(JointPanel).border_subtitle = f"step {fmt(step)} {unit}  [ ]"
+        self._joints.border_subtitle = Text(f"step {fmt(step)} {unit}  [ ]")
 
     def say(self, message: str, error: bool = False) -> None:
-        """One line under the panels: what just happened, or why nothing did."""
+        """Under the panels, wrapped to show all of it: what just happened, or
+        why nothing did. It may quote file content: control characters are
+        shown escaped, and it is never read as markup."""
+        message = printable(message)
         if (message, error) == self._said:
             return
         self._said = (message, error)
         status = self.query_one("#status", Static)
         status.set_class(error, "-error")
-        status.update(Text(message), layout=False)  # user text: never markup
+        status.update(Text(message), layout=False)
 
     # -- actions ----------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """Grey out keys that can't do anything for this robot (or yet)."""
         if not self._ready:
             return False
+        # False hides a binding and lets the key fall through to the next one:
+        # the arrows are the joints' in joint mode, the tool's in Cartesian mode
+        if action in JOINT_ACTIONS:
+            return not self.cartesian
+        if action in CARTESIAN_ACTIONS:
+            return self.cartesian
+        if action == "toggle_motion":  # the label shows the state motion is in
+            return bool(parameters and parameters[0]) == self.animate
+        if action == "cartesian":  # the label names the mode c switches to
+            return bool(parameters and parameters[0]) == self.cartesian
         if action == "next_pose" and not self.robot.pose_names:
             return None
         return True
 
     def action_select(self, delta: int) -> None:
-        if self.cartesian:
-            self.cartesian_row = (self.cartesian_row + delta) % len(CARTESIAN_ROWS)
-            self._update_step_caption()
-            self._show_pose()
-            return
         self.selected = (self.selected + delta) % self.robot.dof
 
+    def action_row(self, delta: int) -> None:
+        self.cartesian_row = (self.cartesian_row + delta) % len(CARTESIAN_ROWS)
+        self._update_step_caption()
+        self._show_now()
+
+    def action_jog(self, multiple: int) -> None:
+        self._interrupt()
+        row = self.cartesian_row
+        self._jog(row, multiple * cartesian_step_size(self.robot, row, self.step_level))
+
     def action_step(self, multiple: int) -> None:
-        if self.cartesian:
-            row = self.cartesian_row
-            delta = multiple * cartesian_step_size(self.robot, row, self.step_level)
-            self._jog(row, delta)
-            return
+        self._interrupt()
         index = self.selected
         delta = multiple * step_size(self.robot, index, self.step_level)
         self._move_to(index, self.q[index] + delta)
@@ -268,10 +321,10 @@ class ControlScreen(SmoothMotion, Screen):
         self.q = move.q
         self._commanded = target
 
-    def action_cartesian(self) -> None:
+    def action_cartesian(self, _in_cartesian: int = 0) -> None:
         self.cartesian = not self.cartesian
         self.say(
-            "Cartesian jogging: ↑↓ row, ←→ move the tool" if self.cartesian else "joint jogging"
+            "Cartesian jogging: ↑↓ axis, ←→ move the tool" if self.cartesian else "joint jogging"
         )
 
     def action_step_size(self, delta: int) -> None:
@@ -299,77 +352,8 @@ class ControlScreen(SmoothMotion, Screen):
     def action_view(self, index: int) -> None:
         self.view_index = index
 
-    @work(exclusive=True, group="modal")
-    async def action_enter_value(self) -> None:
-        if self.cartesian:
-            await self._enter_cartesian()
-            return
-        index = self.selected
-        joint = self.robot.joints[index]
-        label = joint.label(index + 1)
-        unit = joint.unit(self.robot.units)
-
-        def check(text: str) -> float:
-            value = editing.parse_number(text, label)
-            if not joint.min <= value <= joint.max:
-                raise DhsimError(
-                    f"{fmt(value)} is outside {label}'s limits "
-                    f"{fmt(joint.min)}..{fmt(joint.max)} {unit}"
-                )
-            return value
-
-        hint = f"{fmt(joint.min)} .. {fmt(joint.max)} {unit} · enter sets · escape cancels"
-        value = await self.app.push_screen_wait(
-            ValueEntry(f"{label} ({unit})", fmt(self.q[index]), hint, check)
-        )
-        if value is not None:
-            self._move_to(index, value)
-
     def action_edit(self) -> None:
         self.app.action_edit()  # type: ignore[attr-defined]
-
-    async def _enter_cartesian(self) -> None:
-        row = self.cartesian_row
-        name = CARTESIAN_ROWS[row]
-        if row < 3:
-            title, value = f"{name} target ({self.robot.units})", fmt(round(self.pose.xyz[row], 4))
-            hint = "where the tool should go, world coordinates"
-        else:
-            title, value, hint = f"{name} turn (deg)", "0", "turn the tool about its own axis"
-        target = await self.app.push_screen_wait(
-            ValueEntry(title, value, hint, lambda text: editing.parse_number(text, name))
-        )
-        if target is not None:
-            self._jog(row, target - self.pose.xyz[row] if row < 3 else target)
-
-    @work(exclusive=True, group="modal")
-    async def action_save_pose(self) -> None:
-        """Keep the current joints as a named pose, in the robot and its file."""
-        q = self.q
-
-        def check(text: str) -> tuple[Robot, str]:
-            return editing.set_pose(self.robot, text, q), text.strip()
-
-        answer = await self.app.push_screen_wait(
-            ValueEntry(
-                "save pose as",
-                f"pose{len(self.robot.poses) + 1}",
-                "a name; an existing pose of that name is replaced",
-                check,
-            )
-        )
-        if answer is None:
-            return
-        robot, name = answer
-        self.robot = robot
-        try:
-            saved_to = self.app.keep_robot(robot)  # type: ignore[attr-defined]
-        except DhsimError as exc:
-            self.say(f"pose {name} kept in memory, but not saved: {exc}", error=True)
-        else:
-            where = f"saved in {saved_to}" if saved_to else "kept until you quit (e, ctrl+s saves)"
-            self.say(f"pose {name} {where}")
-        self.refresh_bindings()
 
     def action_help(self) -> None:
         self.app.push_screen(HelpScreen("Keys", help_rows(self.robot), HELP_NOTES))

@@ -6,6 +6,7 @@ from textual.binding import Binding
 
 from dhsim_tui.core.jog import REVOLUTE_STEPS_DEG
 from dhsim_tui.core.model import Robot
+from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
 
 KEYS_LEGEND = (
@@ -19,55 +20,32 @@ KEYS_LEGEND = (
     "?    help           q    quit"
 )
 
+#: joint jogging's arrow actions, and Cartesian jogging's (check_action shows one set)
+JOINT_ACTIONS = frozenset({"select", "step"})
+CARTESIAN_ACTIONS = frozenset({"row", "jog"})
+
+
+def _arrows(mode: str, select: str, step: str, what: str, moves: str) -> list[Binding]:
+    """The arrow keys of one jogging mode: ``select`` a row, ``step`` it."""
+    return [
+        Binding("up", f"{select}(-1)", what, key_display="↑↓", id=f"{mode}.prev",
+                tooltip=f"Select the previous {what.lower()}"),
+        Binding("down", f"{select}(1)", what, show=False, id=f"{mode}.next",
+                tooltip=f"Select the next {what.lower()}"),
+        Binding("left", f"{step}(-1)", moves, key_display="←→", id=f"{mode}.step_down",
+                tooltip=f"{moves}: one step down"),
+        Binding("right", f"{step}(1)", moves, show=False, id=f"{mode}.step_up",
+                tooltip=f"{moves}: one step up"),
+        Binding("shift+left", f"{step}(-10)", "×10", show=False, id=f"{mode}.big_step_down",
+                tooltip="Ten steps down"),
+        Binding("shift+right", f"{step}(10)", "×10", show=False, id=f"{mode}.big_step_up",
+                tooltip="Ten steps up"),
+    ]  # fmt: skip
+
+
 CONTROL_BINDINGS = [
-    Binding(
-        "up",
-        "select(-1)",
-        "Joint",
-        key_display="↑↓",
-        id="joint.prev",
-        tooltip="Select the previous joint",
-    ),
-    Binding(
-        "down",
-        "select(1)",
-        "Joint",
-        show=False,
-        id="joint.next",
-        tooltip="Select the next joint",
-    ),
-    Binding(
-        "left",
-        "step(-1)",
-        "Step",
-        key_display="←→",
-        id="joint.step_down",
-        tooltip="Step the selected joint down",
-    ),
-    Binding(
-        "right",
-        "step(1)",
-        "Step",
-        show=False,
-        id="joint.step_up",
-        tooltip="Step the selected joint up",
-    ),
-    Binding(
-        "shift+left",
-        "step(-10)",
-        "×10",
-        show=False,
-        id="joint.big_step_down",
-        tooltip="Ten steps down",
-    ),
-    Binding(
-        "shift+right",
-        "step(10)",
-        "×10",
-        show=False,
-        id="joint.big_step_up",
-        tooltip="Ten steps up",
-    ),
+    *_arrows("joint", "select", "step", "Joint", "Step"),
+    *_arrows("cartesian", "row", "jog", "Axis", "Move tool"),
     Binding(
         "left_square_bracket",
         "step_size(-1)",
@@ -92,7 +70,7 @@ CONTROL_BINDINGS = [
         key_display="⏎",
         show=False,
         id="joint.enter",
-        tooltip="Type the selected joint's exact value",
+        tooltip="Type the exact value of the selected row",
     ),
     Binding(
         "h,home",
@@ -102,10 +80,11 @@ CONTROL_BINDINGS = [
         tooltip="Send every joint home (the D-H table's values)",
     ),
     Binding("p", "next_pose", "Pose", id="robot.pose", tooltip="Go to the next named pose"),
-    Binding(
+    Binding(  # not in the footer (no room at 80 columns): the pose panel's caption names it
         "v",
         "readout",
         "Readout",
+        show=False,
         id="pose.readout",
         tooltip="OAT, roll-pitch-yaw or the full transform",
     ),
@@ -113,12 +92,20 @@ CONTROL_BINDINGS = [
     Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
     Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
     Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+    # c's label names the mode it switches to
     Binding(
         "c",
-        "cartesian",
-        "Cart",
+        "cartesian(0)",
+        "Cartesian",
         id="mode.cartesian",
-        tooltip="Switch between joint and Cartesian jogging",
+        tooltip="Switch to Cartesian jogging: the arrows move the tool",
+    ),
+    Binding(
+        "c",
+        "cartesian(1)",
+        "Joints",
+        id="mode.joints",
+        tooltip="Switch back to joint jogging: the arrows step joints",
     ),
     Binding(
         "P",
@@ -128,14 +115,22 @@ CONTROL_BINDINGS = [
         id="robot.save_pose",
         tooltip="Save the current joints as a named pose",
     ),
+    # one key, two labels: the footer shows the state smooth motion is in
     Binding(
         "m",
-        "toggle_motion",
-        "Motion",
-        show=False,
-        id="motion.toggle",
-        tooltip="Smooth moves to home and poses on or off",
+        "toggle_motion(1)",
+        "Motion on",
+        id="motion.on",
+        tooltip="Smooth moves to home and poses are on: m turns them off",
     ),
+    Binding(
+        "m",
+        "toggle_motion(0)",
+        "Motion off",
+        id="motion.off",
+        tooltip="Smooth moves to home and poses are off: m turns them on",
+    ),
+    Binding("escape", "stop", "Stop", show=False, id="motion.stop", tooltip="Stop a smooth move"),
     Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table"),
     Binding("question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"),
     Binding("q", "app.quit", "Quit", id="app.quit", tooltip="Quit dhsim"),
@@ -145,8 +140,8 @@ CONTROL_BINDINGS = [
 def help_rows(robot: Robot) -> list[tuple[str, str]]:
     """(keys, what they do), as the help screen lists them."""
     return [
-        ("↑ ↓", "select a joint"),
-        ("← →", "step the selected joint"),
+        ("↑ ↓", "select a joint (Cartesian: an axis)"),
+        ("← →", "step the selected joint (Cartesian: move the tool)"),
         ("shift+← →", "ten steps at once"),
         (
             "[ ]",
@@ -160,14 +155,16 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
             "p",
             "next named pose"
             + (
-                f": {', '.join(robot.pose_names)}" if robot.pose_names else " (this robot has none)"
+                f": {printable(', '.join(robot.pose_names))}"
+                if robot.pose_names
+                else " (this robot has none)"
             ),
         ),
         ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
         ("tab, 1 2 3", "show the top, front or side view"),
         ("c", "joint ⇄ Cartesian jogging: X, Y, Z in the world, turns about the tool"),
         ("P", "save the current joints as a named pose (and in the robot file)"),
-        ("m", "smooth moves to home and poses on/off (any key stops a move)"),
+        ("m", "smooth moves to home and poses on/off; escape stops"),
         ("e", "edit the robot's D-H table"),
         ("?", "this help"),
         ("q", "quit"),

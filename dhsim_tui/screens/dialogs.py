@@ -1,4 +1,10 @@
-"""Small modal questions: yes/no, one of several, and the unsaved-changes guard."""
+"""Small modal questions: yes/no, one of several, the unsaved-changes guard
+and the questions of a save (file changed on disk, file read-only).
+
+Every text is shown whole: labels wrap inside the box, and a long path is
+shortened in the middle (:func:`short_path`) so the reason stays in view.
+Text that came from a file (names, paths) is escaped, never markup.
+"""
 
 from __future__ import annotations
 
@@ -11,6 +17,8 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
+from dhsim_tui.core.text import printable
+
 DIALOG_CSS = """
     {name} {{ align: center middle; }}
     {name} > Vertical {{
@@ -18,8 +26,34 @@ DIALOG_CSS = """
         border: round $accent; background: $surface; padding: 0 1;
     }}
     {name} OptionList {{ height: auto; max-height: 16; border: none; padding: 0; }}
+    {name} Label {{ width: 100%; }}
     {name} .hint {{ color: $text-muted; }}
 """
+
+#: the longest path a dialog shows before shortening it in the middle
+PATH_LIMIT = 110
+
+
+def short_path(path: object, limit: int = PATH_LIMIT) -> str:
+    """``path`` as text, escaped, and at most ``limit`` characters: the start
+    and the end (the file's name) stay, the middle becomes ``…``."""
+    text = printable(str(path))
+    if len(text) <= limit:
+        return text
+    limit = max(limit, 8)
+    tail = max(limit * 2 // 3, limit - 1 - limit // 3)
+    head = limit - 1 - tail
+    return f"{text[:head]}…{text[-tail:]}"
+
+
+def reason_of(error: BaseException, path: object) -> str:
+    """The reason of a file error without the path it starts with (escaped)."""
+    if isinstance(error, OSError) and error.strerror:
+        return printable(error.strerror.lower())
+    text = printable(str(error))
+    for prefix in (printable(str(path)), printable(str(path)).rstrip("/")):
+        text = text.removeprefix(f"{prefix}: ")
+    return text
 
 
 class Confirm(ModalScreen[bool]):
@@ -38,8 +72,8 @@ class Confirm(ModalScreen[bool]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = escape(self._title)
-            yield Label(Text(self._question))
+            box.border_title = escape(printable(self._title))
+            yield Label(Text(printable(self._question)))
             yield Label("y yes · n no", classes="hint")
 
     def action_answer(self, yes: bool) -> None:
@@ -64,8 +98,10 @@ class Choice(ModalScreen[str | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = escape(self._title)
-            options = OptionList(*(Option(Text(text), id=value) for value, text in self._choices))
+            box.border_title = escape(printable(self._title))
+            options = OptionList(
+                *(Option(Text(printable(text)), id=value) for value, text in self._choices)
+            )
             yield options
             yield Label(self._hint or "↑↓ choose · enter picks · escape cancels", classes="hint")
 
@@ -110,10 +146,101 @@ class SaveGuard(ModalScreen[str]):
     def compose(self) -> ComposeResult:
         with Vertical() as box:
             box.border_title = "Unsaved changes"
-            yield Label(
-                Text(f"{self._name} has changes that are not saved. Save before {self._doing}?")
-            )
+            name = printable(self._name)
+            yield Label(Text(f"{name} has changes that are not saved. Save before {self._doing}?"))
             yield Label("s save · d discard · escape stay", classes="hint")
 
     def action_answer(self, answer: str) -> None:
         self.dismiss(answer)
+
+
+class FileChanged(ModalScreen[str]):
+    """The file changed on disk since it was read: ``o`` overwrite, ``r`` reload
+    (the changes here are lost), ``c``/``escape`` cancel."""
+
+    BINDINGS = [
+        Binding(
+            "o",
+            "answer('overwrite')",
+            "Overwrite",
+            id="changed.overwrite",
+            tooltip="Write this robot over the file's new content",
+        ),
+        Binding(
+            "r",
+            "answer('reload')",
+            "Reload",
+            id="changed.reload",
+            tooltip="Read the file again; the changes made here are lost",
+        ),
+        Binding(
+            "c,escape",
+            "answer('cancel')",
+            "Cancel",
+            id="changed.cancel",
+            tooltip="Save nothing; keep everything in memory",
+        ),
+    ]
+    DEFAULT_CSS = DIALOG_CSS.format(name="FileChanged")
+
+    def __init__(self, path: object, why: str = "") -> None:
+        super().__init__()
+        self._path = path
+        self._why = why
+
+    def compose(self) -> ComposeResult:
+        with Vertical() as box:
+            box.border_title = "Changed on disk"
+            why = f" ({printable(self._why)})" if self._why else ""
+            yield Label(
+                Text(
+                    f"{short_path(self._path)} changed on disk since you opened it{why}. "
+                    "Overwrite it, reload it (lose your changes), or cancel?"
+                )
+            )
+            yield Label("o overwrite · r reload · c cancel", classes="hint")
+
+    def action_answer(self, answer: str) -> None:
+        self.dismiss(answer)
+
+
+class ReadOnly(ModalScreen[bool]):
+    """The file cannot be written: ``a`` save as another file, ``c``/``escape`` cancel."""
+
+    BINDINGS = [
+        Binding(
+            "a,enter",
+            "answer(True)",
+            "Save as",
+            id="readonly.save_as",
+            tooltip="Save under another name",
+        ),
+        Binding(
+            "c,escape",
+            "answer(False)",
+            "Cancel",
+            id="readonly.cancel",
+            tooltip="Save nothing; keep everything in memory",
+        ),
+    ]
+    DEFAULT_CSS = DIALOG_CSS.format(name="ReadOnly")
+
+    def __init__(self, path: object, reason: str = "read-only") -> None:
+        super().__init__()
+        self._path = path
+        self._reason = reason
+
+    def compose(self) -> ComposeResult:
+        with Vertical() as box:
+            box.border_title = "Not saved"
+            yield Label(
+                Text(
+                    f"not saved: {printable(self._reason)} — {short_path(self._path)}. "
+                    "Nothing was changed on disk and your edits are kept. "
+                    "Save as another file?"
+                )
+            )
+            yield Label("a save as · c cancel", classes="hint")
+
+    def action_answer(self, save_as: bool) -> None:
+        self.dismiss(save_as)

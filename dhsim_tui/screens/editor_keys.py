@@ -1,10 +1,39 @@
-"""The editor's keys: bindings and the help table."""
+"""The editor's keys: bindings and the help table.
+
+The footer shows them in this order, so that at 80 columns the way back
+(escape), help and saving are always visible."""
 
 from __future__ import annotations
 
 from textual.binding import Binding
 
 EDITOR_BINDINGS = [
+    Binding(
+        "escape",
+        "leave",
+        "Back",
+        key_display="esc",
+        id="edit.leave",
+        tooltip="Back to the simulator (asks about unsaved changes)",
+    ),
+    Binding("question_mark", "help", "Help", key_display="?", id="edit.help", tooltip="Every key"),
+    Binding(
+        "ctrl+s",
+        "save",
+        "Save",
+        key_display="^s",
+        id="file.save",
+        tooltip="Save the robot (atomically; asks if the file changed on disk)",
+    ),
+    Binding(
+        "S",
+        "save_as",
+        "Save as",
+        key_display="S",
+        id="file.save_as",
+        tooltip="Save the robot under another name (robots/<name>.toml)",
+    ),
+    Binding("ctrl+z", "undo", "Undo", key_display="^z", id="edit.undo", tooltip="Undo"),
     Binding(
         "t",
         "toggle_type",
@@ -26,6 +55,10 @@ EDITOR_BINDINGS = [
         id="edit.delete",
         tooltip="Delete the joint (or the pose) under the cursor",
     ),
+    Binding("ctrl+y", "redo", "Redo", key_display="^y", id="edit.redo", tooltip="Redo"),
+    Binding(
+        "ctrl+o", "open", "Open", key_display="^o", id="file.open", tooltip="Open a robot file"
+    ),
     Binding(
         "ctrl+up",
         "move(-1)",
@@ -42,48 +75,38 @@ EDITOR_BINDINGS = [
         id="edit.move_down",
         tooltip="Move the joint down",
     ),
-    Binding("ctrl+z", "undo", "Undo", key_display="^z", id="edit.undo", tooltip="Undo"),
-    Binding("ctrl+y", "redo", "Redo", key_display="^y", id="edit.redo", tooltip="Redo"),
-    Binding(
-        "ctrl+o", "open", "Open", key_display="^o", id="file.open", tooltip="Open a robot file"
-    ),
-    Binding(
-        "ctrl+s",
-        "save",
-        "Save",
-        key_display="^s",
-        id="file.save",
-        tooltip="Save the robot (atomically)",
-    ),
     Binding("1", "preview(0)", "Top", show=False, id="preview.top", tooltip="Top view"),
     Binding("2", "preview(1)", "Front", show=False, id="preview.front", tooltip="Front view"),
     Binding("3", "preview(2)", "Side", show=False, id="preview.side", tooltip="Side view"),
-    Binding("question_mark", "help", "Help", key_display="?", id="edit.help", tooltip="Every key"),
     Binding(
-        "escape",
-        "leave",
-        "Back",
-        key_display="esc",
-        id="edit.leave",
-        tooltip="Back to the simulator",
+        "q",
+        "explain_quit",
+        "Quit?",
+        show=False,
+        id="edit.quit_hint",
+        tooltip="Says how to leave the editor and how to quit",
     ),
 ]
 
 EDITOR_HELP_ROWS = [
-    ("arrows", "move in the table"),
+    ("arrows", "move in the table (a wide table scrolls sideways)"),
     ("enter", "edit the cell or field under the cursor"),
     ("t", "revolute <-> prismatic (the variable moves between theta and d)"),
     ("a, insert", "add a joint after the cursor; in the fields table, a pose"),
     ("d, delete", "delete the joint or pose (asks first)"),
     ("ctrl+↑ ctrl+↓", "move the joint up or down"),
-    ("ctrl+z, ctrl+y", "undo, redo"),
-    ("ctrl+o, ctrl+s", "open a robot, save this one (atomic)"),
+    ("ctrl+z, ctrl+y", "undo, redo (the status line says what changed)"),
+    ("ctrl+o", "open a robot"),
+    ("ctrl+s", "save (atomic; asks if the file changed on disk since it was opened)"),
+    ("S", "save as another file, robots/<name>.toml"),
     ("tab", "joints table <-> robot fields and poses"),
     ("1 2 3", "preview: top, front, side"),
     ("escape", "back to the simulator (asks about unsaved changes)"),
+    ("ctrl+q", "quit dhsim (asks about unsaved changes)"),
 ]
 
 EDITOR_HELP_NOTES = (
     "\nA joint's variable (theta for R, d for P, marked *) holds its home value "
-    "and must lie within min..max. A rejected value shows why and changes nothing."
+    "and must lie within min..max (degrees for R, the robot's unit for P). "
+    "A rejected value shows why and changes nothing."
 )

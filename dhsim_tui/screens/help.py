@@ -11,6 +11,8 @@ from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Static
 
+from dhsim_tui.core.text import printable
+
 
 class HelpScreen(ModalScreen[None]):
     """Lists (keys, what they do); any of escape, ``?`` or ``q`` closes it."""
@@ -43,13 +45,13 @@ class HelpScreen(ModalScreen[None]):
         table.add_column(style="bold")
         table.add_column()
         for keys, text in self._rows:
-            table.add_row(Text(keys), Text(text))  # may hold pose names: never markup
+            table.add_row(Text(printable(keys)), Text(printable(text)))  # pose names: escaped
         with VerticalScroll() as box:
-            box.border_title = escape(self._title)
+            box.border_title = escape(printable(self._title))
             box.border_subtitle = "escape closes"
             yield Static(table)
             if self._notes:
-                yield Static(Text(self._notes), classes="notes")
+                yield Static(Text(printable(self._notes).replace("\\n", "\n")), classes="notes")
 
     def action_close(self) -> None:
         self.dismiss(None)

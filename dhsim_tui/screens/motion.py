@@ -1,5 +1,11 @@
 """Smooth moves for the control screen: a quintic joint-space move over about a
-second, drawn at the screen's frame rate; any key stops it where it is."""
+second, drawn at the screen's frame rate.
+
+Only what moves the arm stops a move where it is: a joint or Cartesian step,
+home, the next pose, typing a value, and escape. Switching the view, the
+read-out, help and the like leave it running. Whether motion is on shows in
+the footer ("m Motion on" / "m Motion off") for as long as the screen is up.
+"""
 
 from __future__ import annotations
 
@@ -9,13 +15,14 @@ from dhsim_tui.core.motion import DURATION, interpolate
 
 
 class SmoothMotion:
-    """Mixed into the control screen, which has ``q``, ``animate`` and ``say``."""
+    """Mixed into the control screen, which has ``q``, ``animate``, ``say``,
+    ``set_interval`` and ``refresh_bindings``."""
 
     _animation = None
 
     def _go_to(self, goal: tuple[float, ...], message: str) -> None:
         """Straight to ``goal``, or a quintic move over about a second when
-        motion is on; any key interrupts it where it is."""
+        motion is on; a key that moves the arm interrupts it where it is."""
         self._stop_motion()
         self.say(message)
         if not self.animate or goal == self.q:
@@ -38,14 +45,27 @@ class SmoothMotion:
         self._animation = None
         return True
 
+    def _interrupt(self) -> None:
+        """A key that moves the arm: stop a move where it is, and say so (the
+        key's own action may say something else right after)."""
+        if self._stop_motion():
+            self.say("stopped")
+
     @property
     def moving(self) -> bool:
         return self._animation is not None
 
-    def on_key(self) -> None:
-        if self._stop_motion():
-            self.say("stopped")
+    def action_stop(self) -> None:
+        """escape: stop a smooth move (nothing else)."""
+        self._interrupt()
 
-    def action_toggle_motion(self) -> None:
+    def action_toggle_motion(self, _shown_as_on: int = 0) -> None:
+        """``m``: the parameter only tells the footer's two labels apart."""
         self.animate = not self.animate
-        self.say("smooth motion on" if self.animate else "smooth motion off")
+        self.app.animate = self.animate  # a new control screen (after the editor) keeps it
+        self.refresh_bindings()
+        self.say(
+            "smooth motion on: h and p move over a second; escape stops"
+            if self.animate
+            else "smooth motion off: h and p jump"
+        )

@@ -1,4 +1,10 @@
-"""The open dialog: the robots in ``robots/`` (and the bundled ones), or a path."""
+"""The open dialog: the robots in ``robots/`` (and the bundled ones), or a path.
+
+Nothing a folder or a typed path can do raises: an unreadable folder, a
+working folder that was deleted, a path too long for the system, a file
+name with control characters: each becomes a message (escaped, never
+markup), and the dialog stays open.
+"""
 
 from __future__ import annotations
 
@@ -16,21 +22,39 @@ from textual.widgets.option_list import Option
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.library import bundled_dir, describe
 from dhsim_tui.core.model import Robot
-from dhsim_tui.core.robotfile import load
+from dhsim_tui.core.robotfile import FileStamp, load, load_with_stamp
+from dhsim_tui.core.text import printable
+from dhsim_tui.screens.dialogs import reason_of, short_path
 
 ROBOTS_DIR = Path("robots")
 
 
-def robot_files() -> list[Path]:
-    """Robot files a user may want: ./robots/*.toml first, then the bundled ones."""
+def _key(path: Path) -> Path:
+    """What identifies a file (its real path; as given when that cannot be known)."""
+    try:
+        return path.resolve()
+    except (OSError, RuntimeError, ValueError):
+        return path
+
+
+def robot_files(notes: list[str] | None = None) -> list[Path]:
+    """Robot files a user may want: ./robots/*.toml first, then the bundled ones.
+    A folder that cannot be read is skipped, with a line in ``notes``."""
     files: list[Path] = []
     seen: set[Path] = set()
     for folder in (ROBOTS_DIR, bundled_dir()):
-        if folder.is_dir():
-            for path in sorted(folder.glob("*.toml")):
-                if path.resolve() not in seen:
-                    seen.add(path.resolve())
-                    files.append(path)
+        try:
+            if not folder.is_dir():
+                continue
+            found = sorted(p for p in folder.iterdir() if p.suffix == ".toml")
+        except OSError as exc:
+            if notes is not None:
+                notes.append(f"{short_path(folder, 50)}/ cannot be read: {reason_of(exc, folder)}")
+            continue
+        for path in found:
+            if _key(path) not in seen:
+                seen.add(_key(path))
+                files.append(path)
     return files
 
 
@@ -38,12 +62,12 @@ def summary(path: Path) -> str:
     try:
         return describe(load(path))
     except DhsimError as exc:
-        return f"(cannot be opened: {str(exc).removeprefix(str(path) + ': ')})"
+        return f"(cannot be opened: {reason_of(exc, path)})"
 
 
-class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
+class OpenRobot(ModalScreen[tuple[Robot, Path, FileStamp] | None]):
     """Pick a file from the list or type a path; a bad file shows the loader's
-    message and nothing else changes."""
+    message and nothing else changes. Dismisses with (robot, path, stamp)."""
 
     BINDINGS = [
         Binding(
@@ -57,33 +81,38 @@ class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
         border: round $accent; background: $surface; padding: 0 1;
     }
     OpenRobot OptionList { height: auto; max-height: 12; }
+    OpenRobot Label { width: 100%; }
     OpenRobot #error { color: $error; }
     OpenRobot .hint { color: $text-muted; }
     """
 
     def compose(self) -> ComposeResult:
-        self._files = robot_files()
+        notes: list[str] = []
+        self._files = robot_files(notes)
         with Vertical() as box:
             box.border_title = "Open a robot"
             yield OptionList(
                 *(
-                    Option(Text(f"{path}  {summary(path)}"), id=str(i))
+                    Option(Text(f"{short_path(path, 60)}  {summary(path)}"), id=str(i))
                     for i, path in enumerate(self._files)
                 )
             )
             yield Input(placeholder="or type a path to a .toml file, then enter", id="path")
-            yield Label("", id="error")
+            yield Label(Text("\n".join(notes)), id="error")
             yield Label(
                 "↑↓ choose · enter opens · tab to the path · escape cancels", classes="hint"
             )
 
+    def _say(self, message: str) -> None:
+        self.query_one("#error", Label).update(Text(printable(message)))
+
     def _open(self, path: Path) -> None:
         try:
-            robot = load(path)
-        except DhsimError as exc:
-            self.query_one("#error", Label).update(Text(str(exc)))
+            robot, stamp = load_with_stamp(path)
+        except (DhsimError, OSError, ValueError, RuntimeError) as exc:
+            self._say(f"cannot open: {reason_of(exc, path)} — {short_path(path)}")
             return
-        self.dismiss((robot, path))
+        self.dismiss((robot, path, stamp))
 
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
         event.stop()
@@ -93,7 +122,7 @@ class OpenRobot(ModalScreen[tuple[Robot, Path] | None]):
         event.stop()
         text = event.value.strip()
         if not text:
-            self.query_one("#error", Label).update("type a path to a robot file")
+            self._say("type a path to a robot file")
             return
         path = Path(text)
         with contextlib.suppress(RuntimeError):  # "~someone" with no such user: as typed

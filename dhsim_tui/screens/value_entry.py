@@ -6,6 +6,7 @@ from collections.abc import Callable
 from typing import Any
 
 from rich.text import Text
+from textual import events
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
@@ -14,6 +15,31 @@ from textual.screen import ModalScreen
 from textual.widgets import Input, Label
 
 from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.text import printable
+
+#: the Input's own keys (ctrl+u, backspace, enter...) and what they do
+_INPUT_ACTIONS = {binding.key: binding.action for binding in Binding.make_bindings(Input.BINDINGS)}
+
+
+class OrderedInput(Input):
+    """An Input that applies every key in the order it came.
+
+    Textual lets a key bound on the Input (ctrl+u, backspace, enter) bubble
+    up to the app before its binding runs, while a printable key is inserted
+    at once: in a burst, "ctrl+u - 1 4" could clear the field after "-14"
+    was typed. Here the Input runs its own bindings as the key arrives.
+    """
+
+    async def _on_key(self, event: events.Key) -> None:
+        action = _INPUT_ACTIONS.get(event.key)
+        if action is not None:
+            event.stop()
+            event.prevent_default()
+            await self.run_action(action)
+
+
+#: the longest title shown in the border (the box is 52 wide)
+TITLE_LIMIT = 44
 
 
 class ValueEntry(ModalScreen[Any]):
@@ -23,6 +49,10 @@ class ValueEntry(ModalScreen[Any]):
     raises DhsimError with the reason, which is shown under the input; the
     typed text is kept so it can be fixed, and nothing changes until a valid
     value is accepted.
+
+    Type-ahead: the input has the focus from the moment the dialog exists, so
+    keys typed while it is still being drawn go to it, in order, instead of
+    to a screen with nothing focused (where they were lost or reordered).
     """
 
     BINDINGS = [
@@ -37,7 +67,7 @@ class ValueEntry(ModalScreen[Any]):
     DEFAULT_CSS = """
     ValueEntry { align: center middle; }
     ValueEntry > Vertical {
-        width: 52; height: auto; border: round $accent; padding: 0 1;
+        width: 52; max-width: 100%; height: auto; border: round $accent; padding: 0 1;
         background: $surface;
     }
     ValueEntry Label { width: 100%; }
@@ -48,15 +78,20 @@ class ValueEntry(ModalScreen[Any]):
     def __init__(self, title: str, value: str, hint: str, check: Callable[[str], Any]) -> None:
         super().__init__()
         self._title = title
-        self._value = value
         self._hint = hint
         self._check = check
+        self._input = OrderedInput(value, id="value", select_on_focus=True)
+        self.set_focus(self._input, scroll_visible=False)
 
     def compose(self) -> ComposeResult:
+        title = printable(self._title)
         with Vertical() as box:
-            box.border_title = escape(self._title)
-            yield Input(self._value, id="value", select_on_focus=True)
-            yield Label(Text(self._hint), id="hint")
+            if len(title) <= TITLE_LIMIT:
+                box.border_title = escape(title)
+            else:  # too long for the border: shown whole, wrapped, above the input
+                yield Label(Text(title), id="title")
+            yield self._input
+            yield Label(Text(printable(self._hint)), id="hint")
             yield Label("", id="error")
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
@@ -64,7 +99,7 @@ class ValueEntry(ModalScreen[Any]):
         try:
             value = self._check(event.value)
         except DhsimError as exc:
-            self.query_one("#error", Label).update(Text(str(exc)))  # echoes user text
+            self.query_one("#error", Label).update(Text(printable(str(exc))))  # echoes user text
             return
         self.dismiss(value)
 

@@ -10,7 +10,14 @@ from dhsim_tui.core.kinematics import EndEffector
 from dhsim_tui.core.model import LENGTH_DECIMALS
 
 READOUTS = ("oat", "rpy", "matrix")
+#: the key that switches the read-out, named where it acts (the footer has no room)
+READOUT_KEY = "v: next read-out"
 READOUT_TITLES = {"oat": "XYZ / OAT", "rpy": "XYZ / roll pitch yaw", "matrix": "4×4 transform"}
+
+
+#: labels are right-aligned in this many columns, one more than the longest
+#: ("pitch"), so no label touches the panel's border
+LABEL_WIDTH = 6
 
 
 def _number(value: float, decimals: int = 2, width: int = 10) -> str:
@@ -26,12 +33,12 @@ def pose_text(pose: EndEffector, readout: str, units: str) -> Text:
         text.append(f"  rotation (3×3) | position ({units})", style="dim")
         return text
     for name, value in zip("XYZ", pose.xyz, strict=True):
-        text.append(f"{name:>5} ", style="bold")
+        text.append(f"{name:>{LABEL_WIDTH}} ", style="bold")
         text.append(f"{_number(value, LENGTH_DECIMALS[units], 11)} {units}\n")
     names = ("O", "A", "T") if readout == "oat" else ("roll", "pitch", "yaw")
     angles = pose.oat if readout == "oat" else pose.rpy
     for i, (name, value) in enumerate(zip(names, angles, strict=True)):
-        text.append(f"{name:>5} ", style="bold")
+        text.append(f"{name:>{LABEL_WIDTH}} ", style="bold")
         text.append(f"{_number(value)}°" + ("\n" if i < 2 else ""))
     return text
 
@@ -52,6 +59,7 @@ class PosePanel(Static):
         warnings: tuple[str, ...] = (),
     ) -> None:
         self.border_title = READOUT_TITLES[readout]
+        self.border_subtitle = READOUT_KEY
         text = pose_text(pose, readout, units)
         text.append("\n")
         text.append_text(health_text(dexterity, warnings))
@@ -62,7 +70,7 @@ def health_text(dexterity: Dexterity | None, warnings: tuple[str, ...]) -> Text:
     """Manipulability (warning colour near a singularity) and the floor check."""
     text = Text()
     if dexterity is not None:
-        text.append("    μ ", style="bold")
+        text.append(f"{'μ':>{LABEL_WIDTH}} ", style="bold")
         style = "bold red" if dexterity.singular else "yellow" if dexterity.near_singular else ""
         note = (
             "  singular"

@@ -1,0 +1,511 @@
+"""Issue 8 in the editor: what it shows is whole and true, keys are applied in
+order, saves never overwrite what was not read, file text cannot steer the
+terminal, and odd folders or paths give a message instead of a traceback.
+
+Screens are read as rendered text (what a user would see), not widget state.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+import pytest
+from textual import events
+from textual.containers import Vertical
+
+from dhsim_tui.app import DhsimApp
+from dhsim_tui.core import load, load_robot, save
+from dhsim_tui.core.editing import new_robot, set_joint_field
+from dhsim_tui.scene import VIEWS, build_wireframe, project
+from dhsim_tui.screens.control import ControlScreen
+from dhsim_tui.screens.dialogs import FileChanged, ReadOnly, SaveGuard
+from dhsim_tui.screens.editor import QUIT_HINT, EditorScreen
+from dhsim_tui.screens.editor_table import number
+from dhsim_tui.screens.open_robot import OpenRobot
+from dhsim_tui.screens.value_entry import ValueEntry
+
+BOX = "│╭╮╰╯─┃━▎▊▔▁"
+
+
+@pytest.fixture(autouse=True)
+def in_tmp(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def editor_app(robot=None, path=None, start="edit") -> DhsimApp:
+    if robot is None:
+        robot, path = load_robot("puma560")
+    return DhsimApp(robot, path, start=start, animate=False)
+
+
+def editor(app: DhsimApp) -> EditorScreen:
+    for screen in reversed(app.screen_stack):
+        if isinstance(screen, EditorScreen):
+            return screen
+    raise AssertionError("no editor")
+
+
+def screen_lines(app: DhsimApp) -> list[str]:
+    """The screen as the terminal would show it, one string per row."""
+    return [strip.text for strip in app.screen._compositor.render_strips()]
+
+
+def region_text(app: DhsimApp, widget) -> str:
+    """The words shown inside ``widget`` (borders dropped, lines joined)."""
+    region = widget.region
+    lines = screen_lines(app)[region.y : region.bottom]
+    parts = [line[region.x : region.right].strip(BOX + " ") for line in lines]
+    return " ".join(p for p in parts if p)
+
+
+def flat(text: str) -> str:
+    return re.sub(r"\s+", " ", text)
+
+
+async def edit_cell(pilot, row: int, column: int, text: str) -> None:
+    table = editor(pilot.app).query_one("#joints-table")
+    table.focus()
+    table.move_cursor(row=row, column=column)
+    await pilot.press("enter", "ctrl+u", *text, "enter")
+    await pilot.pause()
+
+
+# -- step 6: whole values, whole messages ------------------------------------------
+
+
+def test_numbers_are_never_shortened():
+    assert number(70.125) == "70.125"
+    assert number(123.4567891) == "123.4567891"
+    assert number(0.089459) == "0.089459"
+    assert number(-0.0) == "0"
+    assert number(90.0) == "90"
+    assert number(1e-05) == "1e-05"
+    for value in (0.1 + 0.2, 1 / 3, -431.8, 2.5e-7, 999999.999999):
+        assert float(number(value)) == value
+
+
+async def test_cells_show_the_whole_value_after_each_edit():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "70.125")
+        text = "\n".join(screen_lines(app))
+        assert " 70.125 " in text
+        await edit_cell(pilot, 1, 4, "123.4567891")
+        assert "123.4567891" in "\n".join(screen_lines(app))
+        fields = editor(app).query_one("#fields-table")
+        fields.focus()
+        fields.move_cursor(row=1)
+        await pilot.press("enter", "down", "down", "enter")  # units: mm -> m
+        await pilot.pause()
+        text = "\n".join(screen_lines(app))
+        for shown in ("0.070125", "0.1234567891", "0.15005", "0.4318"):
+            assert f" {shown} " in text, shown
+        await pilot.press("ctrl+z", "ctrl+z")  # back to 431.8: the column shrinks again
+        await pilot.pause()
+        table = editor(app).query_one("#joints-table")
+        widths = {c.label.plain: c.width for c in table.columns.values()}
+        assert widths["a\n(mm)"] == len("70.125")
+
+
+async def test_ur5_in_metres_shows_every_digit():
+    robot, path = load_robot("ur5")
+    app = editor_app(robot, path)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        fields = editor(app).query_one("#fields-table")
+        fields.focus()
+        fields.move_cursor(row=1)
+        await pilot.press("enter", "down", "down", "enter")
+        await pilot.pause()
+        assert editor(app).robot.units == "m"
+        assert " 0.089459 " in "\n".join(screen_lines(app))
+
+
+async def test_a_wide_table_scrolls_instead_of_cutting():
+    robot = set_joint_field(new_robot("wide", 3), 0, "a", 123456.78901234)
+    robot = set_joint_field(robot, 0, "d", -98765.4321012)
+    app = editor_app(robot, None)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        table = editor(app).query_one("#joints-table")
+        assert table.virtual_size.width > table.scrollable_content_region.width
+        text = "\n".join(screen_lines(app))
+        assert "-98765.4321012" in text and "123456.78901234" in text
+        table.move_cursor(row=0, column=7)  # max: off the right edge until scrolled
+        await pilot.pause()
+        assert table.scroll_x > 0
+        assert " 180 " in screen_lines(app)[table.region.y + 3]
+
+
+@pytest.mark.parametrize("size", [(80, 24), (120, 36)])
+async def test_the_unsaved_changes_question_is_shown_whole(size, in_tmp):
+    file = in_tmp / "arm.toml"
+    save(new_robot("a robot with a rather long name, as people write them", 2), file)
+    app = editor_app(load(file), file)
+    async with app.run_test(size=size) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "10")
+        await pilot.press("escape")
+        await pilot.pause()
+        assert isinstance(app.screen, SaveGuard)
+        text = flat(region_text(app, app.screen.query_one(Vertical)))
+        assert (
+            "a robot with a rather long name, as people write them has changes that are "
+            "not saved. Save before leaving the editor?"
+        ) in text
+        assert "s save · d discard · escape stay" in text
+
+
+async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch):
+    folder = in_tmp
+    while len(str(folder)) < 200:
+        folder = folder / "a_rather_long_folder_name"
+    folder.mkdir(parents=True)
+    file = folder / "arm.toml"
+    assert len(str(file)) > 200
+    save(new_robot("arm", 2), file)
+    before = file.read_bytes()
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "10")
+        monkeypatch.setattr(os, "replace", refuse)
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        monkeypatch.undo()
+        status = editor(app).query_one("#editor-status")
+        shown = region_text(app, status)
+        assert shown.startswith("not saved: permission denied — ")
+        assert shown.endswith("/arm.toml") and "…" in shown
+        assert len(status.render_lines(status.region.reset_offset)) <= status.region.height
+        assert editor(app).dirty
+    assert file.read_bytes() == before
+
+
+# -- step 10: type-ahead -------------------------------------------------------------
+
+
+async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatch):
+    """ctrl+u - 1 4 enter, arriving while the dialog is being built (nothing
+    in it has the focus yet), set -14: none lost, none out of order."""
+    app = editor_app()
+    compose = ValueEntry.compose
+    typed = []
+
+    def compose_while_keys_arrive(screen):
+        if not typed:
+            typed.append(screen)
+            for key, char in (("ctrl+u", None), ("minus", "-"), ("1", "1"), ("4", "4")):
+                app.post_message(events.Key(key, char))
+            app.post_message(events.Key("enter", None))
+        return compose(screen)
+
+    monkeypatch.setattr(ValueEntry, "compose", compose_while_keys_arrive)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        editor(app).query_one("#joints-table").move_cursor(row=1, column=4)  # joint 2 a
+        await pilot.press("enter")
+        await pilot.pause()
+        await pilot.pause()
+        assert typed, "the dialog was not opened"
+        assert isinstance(app.screen, EditorScreen)
+        assert editor(app).robot.joints[1].a == -14.0
+
+
+# -- step 12: a burst of keys ends on the right robot --------------------------------
+
+
+async def test_after_a_burst_the_table_and_preview_show_the_final_robot():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        editor(app).query_one("#joints-table").move_cursor(row=2, column=0)
+        for _ in range(301):
+            app.post_message(events.Key("t", "t"))
+        await pilot.pause()
+        await pilot.pause(0.2)
+        final = editor(app).robot
+        assert final.joints[2].type == "prismatic"
+        table = editor(app).query_one("#joints-table")
+        assert [str(c) for c in table.get_row_at(2)][:4] == ["3", "P", "0", "150.05*"]
+        scene = editor(app).query_one("#preview").views[1].scene
+        wire = build_wireframe(final, final.kinematics.frames(final.home))
+        assert repr(scene) == repr(project(wire, VIEWS[1]))  # NaN breaks the lines: != itself
+        assert "joint 3 is now prismatic" in region_text(
+            app, editor(app).query_one("#editor-status")
+        )
+
+
+# -- step 13: small things -----------------------------------------------------------
+
+
+async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        footer = screen_lines(app)[-1]
+        assert "esc Back" in footer and "? Help" in footer and "^s Save" in footer
+        await pilot.press("q")
+        assert isinstance(app.screen, EditorScreen)
+        assert flat(region_text(app, editor(app).query_one("#editor-status"))) == QUIT_HINT
+
+
+async def test_column_headers_show_units():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        table = editor(app).query_one("#joints-table")
+        header = screen_lines(app)[table.region.y + 1 : table.region.y + 3]
+        assert re.search(r"theta.*d.*a.*alpha", header[0])
+        assert re.search(r"\(deg\).*\(mm\).*\(mm\).*\(deg\)", header[1])
+        assert "min, max in deg" in screen_lines(app)[table.region.bottom - 1]
+
+
+async def test_undo_and_redo_say_what_they_changed():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 1, 5, "90")  # joint 2 alpha 0 -> 90
+        status = editor(app).query_one("#editor-status")
+        await pilot.press("ctrl+z")
+        await pilot.pause()
+        assert region_text(app, status) == "undid: joint 2 alpha 90 -> 0"
+        await pilot.press("ctrl+y")
+        await pilot.pause()
+        assert region_text(app, status) == "redid: joint 2 alpha 0 -> 90"
+        editor(app).query_one("#joints-table").move_cursor(row=0)
+        await pilot.press("t", "ctrl+z")
+        await pilot.pause()
+        assert region_text(app, status) == "undid: joint 1 prismatic -> revolute"
+
+
+# -- step 7 and 8: file text and odd paths -------------------------------------------
+
+
+async def test_file_names_with_escape_sequences_are_shown_escaped(in_tmp):
+    (in_tmp / "robots").mkdir()
+    evil = in_tmp / "robots" / "a\x1b[2J\x1b]0;owned\x07\u202e.toml"
+    save(new_robot("fine", 2), evil)
+    app = editor_app()
+    async with app.run_test(size=(120, 36)) as pilot:
+        await pilot.pause()
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        text = "\n".join(screen_lines(app))
+        assert "a\\x1b[2J\\x1b]0;owned\\x07\\u202e.toml" in text
+        app.screen.query_one("#path").value = str(in_tmp / "gone\x1b[2J.toml")
+        app.screen.query_one("#path").focus()
+        await pilot.press("enter")
+        error = str(app.screen.query_one("#error").render())
+        assert "gone\\x1b[2J.toml" in error and "no such file" in error
+        await pilot.press("tab")
+        app.screen.query_one("OptionList").focus()
+        await pilot.press("enter")  # the evil file opens; its name is escaped everywhere
+        await pilot.pause()
+        text = "\n".join(screen_lines(app))
+        assert "\\x1b" in text
+    for line in text.splitlines():
+        assert not any(ord(c) < 32 or c == "\u202e" for c in line)
+
+
+async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch):
+    (in_tmp / "robots").mkdir()
+    real_iterdir = Path.iterdir
+
+    def iterdir(self):
+        if self.name == "robots" and not self.is_absolute():
+            raise PermissionError(13, "Permission denied", str(self))
+        return real_iterdir(self)
+
+    monkeypatch.setattr(Path, "iterdir", iterdir)
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        assert isinstance(app.screen, OpenRobot)
+        error = str(app.screen.query_one("#error").render())
+        assert "robots/ cannot be read: permission denied" in error
+        assert app.screen.query_one("OptionList").option_count > 0  # the bundled ones
+
+
+async def test_a_path_longer_than_255_bytes_is_a_message(in_tmp):
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        path = app.screen.query_one("#path")
+        path.value = str(in_tmp / ("x" * 300 + ".toml"))
+        path.focus()
+        await pilot.press("enter")
+        assert isinstance(app.screen, OpenRobot)
+        error = flat(region_text(app, app.screen.query_one("#error")))
+        assert error.startswith("cannot open: cannot read: File name too long — ")
+        assert error.endswith("xxxx.toml") and "…" in error
+
+
+async def test_a_deleted_working_folder_is_a_message(in_tmp, monkeypatch):
+    work = in_tmp / "work"
+    (work / "robots").mkdir(parents=True)
+    save(new_robot("arm", 2), work / "robots" / "arm.toml")
+    monkeypatch.chdir(work)
+    relative = Path("robots") / "arm.toml"
+    robot = load(relative)
+    app = DhsimApp(robot, relative, animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        (work / "robots" / "arm.toml").unlink()
+        (work / "robots").rmdir()
+        work.rmdir()
+        await pilot.press("e")  # used to raise FileNotFoundError from Path.cwd()
+        await pilot.pause()
+        assert isinstance(app.screen, EditorScreen)
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        assert isinstance(app.screen, OpenRobot)
+        await pilot.press("escape")
+        await edit_cell(pilot, 0, 4, "10")
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        shown = flat(region_text(app, editor(app).query_one("#editor-status")))
+        assert shown.startswith("not saved:") and "robots/arm.toml" in shown
+        assert editor(app).dirty
+
+
+# -- step 3: never overwrite what was not read ---------------------------------------
+
+
+COMMENTED = """# my arm: keep this comment
+name = "arm"
+units = "mm"
+
+[[joints]]
+theta = 0.0
+d = 0.0
+a = 100.0  # the upper arm
+alpha = 0.0
+
+[[joints]]
+theta = 0.0
+d = 0.0
+a = 50.0
+alpha = 0.0
+"""
+
+
+async def _changed_on_disk(in_tmp, pilot) -> tuple[Path, bytes]:
+    """Edit in the editor, then let another program rewrite the file; ctrl+s."""
+    file = in_tmp / "arm.toml"
+    await edit_cell(pilot, 0, 4, "111")
+    other = set_joint_field(load(file), 1, "a", 77.0)
+    save(other, file)
+    outside = file.read_bytes()
+    await pilot.press("ctrl+s")
+    await pilot.pause()
+    assert isinstance(pilot.app.screen, FileChanged)
+    text = flat(region_text(pilot.app, pilot.app.screen.query_one(Vertical)))
+    assert "changed on disk since you opened it" in text
+    assert "Overwrite it, reload it (lose your changes), or cancel?" in text
+    return file, outside
+
+
+@pytest.mark.parametrize("answer", ["o", "r", "c"])
+async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
+    file = in_tmp / "arm.toml"
+    file.write_text(COMMENTED)
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        file, outside = await _changed_on_disk(in_tmp, pilot)
+        mine = editor(app).robot
+        await pilot.press(answer)
+        await pilot.pause()
+        assert isinstance(app.screen, EditorScreen)
+        on_disk = load(file)
+        if answer == "o":
+            assert on_disk == mine and not editor(app).dirty
+        elif answer == "r":
+            assert file.read_bytes() == outside
+            assert editor(app).robot == on_disk and on_disk.joints[1].a == 77.0
+            assert not editor(app).dirty
+            await pilot.press("ctrl+z")  # the edits were only set aside
+            assert editor(app).robot == mine
+        else:
+            assert file.read_bytes() == outside
+            assert editor(app).robot == mine and editor(app).dirty
+            assert "not saved" in region_text(app, editor(app).query_one("#editor-status"))
+
+
+async def test_overwrite_keeps_the_comments(in_tmp):
+    file = in_tmp / "arm.toml"
+    file.write_text(COMMENTED)
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "111")
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+    text = file.read_text()
+    assert "# my arm: keep this comment" in text and "# the upper arm" in text
+    assert load(file).joints[0].a == 111.0
+
+
+async def test_read_only_file_is_refused_and_save_as_works(in_tmp):
+    file = in_tmp / "arm.toml"
+    file.write_text(COMMENTED)
+    file.chmod(0o444)
+    before = file.read_bytes()
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "111")
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        assert isinstance(app.screen, ReadOnly)
+        text = flat(region_text(app, app.screen.query_one(Vertical)))
+        assert "not saved: the file is read-only" in text and "Save as another file?" in text
+        await pilot.press("c")
+        await pilot.pause()
+        assert "read-only" in region_text(app, editor(app).query_one("#editor-status"))
+        assert editor(app).dirty
+        await pilot.press("ctrl+s", "a")
+        await pilot.pause()
+        assert isinstance(app.screen, ValueEntry)
+        assert app.screen.query_one("Input").value == "arm"
+        await pilot.press("enter")
+        await pilot.pause()
+        copy = in_tmp / "robots" / "arm.toml"
+        assert load(copy) == editor(app).robot and not editor(app).dirty
+        assert editor(app).path == Path("robots/arm.toml")
+        assert "# my arm: keep this comment" in copy.read_text()
+    assert file.read_bytes() == before
+
+
+async def test_save_as_key_writes_a_new_file_and_keeps_the_old(in_tmp):
+    file = in_tmp / "arm.toml"
+    file.write_text(COMMENTED)
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 4, "111")
+        await pilot.press("S")
+        await pilot.pause()
+        assert isinstance(app.screen, ValueEntry)
+        await pilot.press("ctrl+u", *"copy", "enter")
+        await pilot.pause()
+        copy = in_tmp / "robots" / "copy.toml"
+        assert load(copy).joints[0].a == 111.0
+        assert "# the upper arm" in copy.read_text()
+        assert editor(app).path == Path("robots/copy.toml") and not editor(app).dirty
+        await pilot.press("escape")
+        assert isinstance(app.screen, ControlScreen)
+    assert file.read_text() == COMMENTED
