@@ -51,6 +51,8 @@ KEYS = [
     "3",
     "question_mark",
     "space",
+    "S",
+    "q",
 ]
 LENGTH = 12
 CHARACTERS = {"minus": "-", "full_stop": ".", "space": " ", "question_mark": "?"}

@@ -12,18 +12,31 @@ import re
 from pathlib import Path
 
 import pytest
-from textual import events
+from textual import events, work
+from textual.app import App
 from textual.containers import Vertical
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load, load_robot, save
-from dhsim_tui.core.editing import new_robot, set_joint_field
+from dhsim_tui.core.editing import (
+    delete_joint,
+    insert_joint,
+    move_joint,
+    new_robot,
+    set_joint_field,
+    set_name,
+    set_pose,
+    set_units,
+)
+from dhsim_tui.core.robotfile import read_stamp
 from dhsim_tui.scene import VIEWS, build_wireframe, project
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.dialogs import FileChanged, ReadOnly, SaveGuard
 from dhsim_tui.screens.editor import QUIT_HINT, EditorScreen
+from dhsim_tui.screens.editor_changes import describe_change
 from dhsim_tui.screens.editor_table import number
 from dhsim_tui.screens.open_robot import OpenRobot
+from dhsim_tui.screens.save_flow import SaveResult, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
 
 BOX = "│╭╮╰╯─┃━▎▊▔▁"
@@ -62,7 +75,15 @@ def region_text(app: DhsimApp, widget) -> str:
 
 
 def flat(text: str) -> str:
-    return re.sub(r"\s+", " ", text)
+    return re.sub(r"\s+", " ", text).strip()
+
+
+def status_shown_whole(app: DhsimApp) -> str:
+    """The status line's message, checked to be on screen in full."""
+    status = editor(app).query_one("#editor-status")
+    shown = flat(region_text(app, status))
+    assert shown == flat(str(status.render())), "the status line is cut"
+    return shown
 
 
 async def edit_cell(pilot, row: int, column: int, text: str) -> None:
@@ -181,11 +202,9 @@ async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch
         await pilot.press("ctrl+s")
         await pilot.pause()
         monkeypatch.undo()
-        status = editor(app).query_one("#editor-status")
-        shown = region_text(app, status)
+        shown = status_shown_whole(app)
         assert shown.startswith("not saved: permission denied — ")
         assert shown.endswith("/arm.toml") and "…" in shown
-        assert len(status.render_lines(status.region.reset_offset)) <= status.region.height
         assert editor(app).dirty
     assert file.read_bytes() == before
 
@@ -255,7 +274,7 @@ async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
         assert "esc Back" in footer and "? Help" in footer and "^s Save" in footer
         await pilot.press("q")
         assert isinstance(app.screen, EditorScreen)
-        assert flat(region_text(app, editor(app).query_one("#editor-status"))) == QUIT_HINT
+        assert status_shown_whole(app) == QUIT_HINT
 
 
 async def test_column_headers_show_units():
@@ -285,6 +304,23 @@ async def test_undo_and_redo_say_what_they_changed():
         await pilot.press("t", "ctrl+z")
         await pilot.pause()
         assert region_text(app, status) == "undid: joint 1 prismatic -> revolute"
+
+
+def test_describe_change_names_each_kind_of_edit():
+    robot = new_robot("arm", 3)
+    wide = new_robot("arm", 32)
+    two = set_joint_field(robot, 1, "a", 5.0)
+    assert describe_change(robot, two) == "joint 2 a 0 -> 5"
+    assert describe_change(two, insert_joint(two, 0)) == "joint 2 added"
+    assert describe_change(two, delete_joint(two, 1)) == "joint 2 deleted"
+    assert describe_change(two, move_joint(two, 1, 1)) == "joint 2 swapped with joint 3"
+    assert describe_change(robot, set_units(robot, "m")) == "units mm -> m"
+    named = set_name(robot, "x" * 80)
+    assert describe_change(robot, named) == "name changed"  # too long to quote
+    posed = set_pose(wide, "p", tuple(range(32)))
+    assert describe_change(wide, posed) == "pose p added"
+    assert describe_change(posed, set_pose(posed, "p", (1,) * 32)) == "pose p changed"
+    assert describe_change(robot, robot) == "nothing changed"
 
 
 # -- step 7 and 8: file text and odd paths -------------------------------------------
@@ -376,8 +412,8 @@ async def test_a_deleted_working_folder_is_a_message(in_tmp, monkeypatch):
         await edit_cell(pilot, 0, 4, "10")
         await pilot.press("ctrl+s")
         await pilot.pause()
-        shown = flat(region_text(app, editor(app).query_one("#editor-status")))
-        assert shown.startswith("not saved:") and "robots/arm.toml" in shown
+        shown = status_shown_whole(app)
+        assert shown.startswith("not saved:") and shown.endswith("— robots/arm.toml")
         assert editor(app).dirty
 
 
@@ -442,7 +478,7 @@ async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
         else:
             assert file.read_bytes() == outside
             assert editor(app).robot == mine and editor(app).dirty
-            assert "not saved" in region_text(app, editor(app).query_one("#editor-status"))
+            assert "not saved" in status_shown_whole(app)
 
 
 async def test_overwrite_keeps_the_comments(in_tmp):
@@ -475,7 +511,7 @@ async def test_read_only_file_is_refused_and_save_as_works(in_tmp):
         assert "not saved: the file is read-only" in text and "Save as another file?" in text
         await pilot.press("c")
         await pilot.pause()
-        assert "read-only" in region_text(app, editor(app).query_one("#editor-status"))
+        assert status_shown_whole(app).startswith("not saved: the file is read-only — ")
         assert editor(app).dirty
         await pilot.press("ctrl+s", "a")
         await pilot.pause()
@@ -509,3 +545,49 @@ async def test_save_as_key_writes_a_new_file_and_keeps_the_old(in_tmp):
         await pilot.press("escape")
         assert isinstance(app.screen, ControlScreen)
     assert file.read_text() == COMMENTED
+
+
+class FlowHost(App):
+    """save_flow as the simulator's P and quit guard use it: no editor, no report."""
+
+    def __init__(self, robot, path, stamp) -> None:
+        super().__init__()
+        self.args = (robot, path, stamp)
+        self.result = "running"
+
+    @work
+    async def run_flow(self) -> None:
+        self.result = await save_flow(self, *self.args)
+
+
+async def test_save_flow_outside_the_editor(in_tmp):
+    robot, path = load_robot("irb140")
+    host = FlowHost(robot, path, None)
+    async with host.run_test(size=(80, 24)) as pilot:
+        host.run_flow()
+        await pilot.pause()
+        assert isinstance(host.screen, ValueEntry)
+        assert host.screen.query_one("Input").value == "irb140"  # the bundled file's name
+        await pilot.press("enter")
+        await pilot.pause()
+    target = Path("robots") / "irb140.toml"
+    assert isinstance(host.result, SaveResult) and host.result.kind == "saved"
+    assert host.result.path == target and load(target) == robot
+    assert host.result.stamp == read_stamp(target)
+    assert "# " in target.read_text()  # the bundled file's comments came along
+
+
+async def test_save_flow_never_writes_a_file_created_meanwhile(in_tmp):
+    robot = new_robot("arm", 2)
+    target = in_tmp / "arm.toml"
+    host = FlowHost(robot, target, None)  # None: the file must not exist
+    target.write_text("# somebody else's file\n")
+    async with host.run_test(size=(80, 24)) as pilot:
+        host.run_flow()
+        await pilot.pause()
+        assert isinstance(host.screen, FileChanged)
+        await pilot.press("c")
+        await pilot.pause()
+        assert host.result is None
+        assert any("not saved" in n.message for n in host._notifications)
+    assert target.read_text() == "# somebody else's file\n"

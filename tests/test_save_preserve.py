@@ -202,7 +202,7 @@ def test_a_pose_deleted_and_added_again_moves_to_the_end_alone(tmp_path):
         robot = editing.delete_pose(robot, "ready")
         return editing.set_pose(robot, "ready", (0.0, 0.0, 0.0))
 
-    new, removed, added = edited(tmp_path, COMMENTED, edit)
+    _new, removed, added = edited(tmp_path, COMMENTED, edit)
     assert removed == ["ready = [0.0, 90, 100.0]   # ready to pick"]
     assert added == ["ready = [0.0, 0.0, 0.0]   # ready to pick"]
     assert load(tmp_path / "arm.toml").pose_names == ("low", "ready")
@@ -211,7 +211,7 @@ def test_a_pose_deleted_and_added_again_moves_to_the_end_alone(tmp_path):
 def test_the_files_key_order_is_kept(tmp_path):
     text = "[[joints]]\nalpha = 0.0\na = 1.0\nd = 0.0\ntheta = 0.0\n"
     text = 'units = "cm"  # first\nname = "odd order"\n' + text
-    new, removed, added = edited(tmp_path, text, lambda r: editing.set_joint_field(r, 0, "a", 2.0))
+    _new, removed, added = edited(tmp_path, text, lambda r: editing.set_joint_field(r, 0, "a", 2.0))
     assert (removed, added) == (["a = 1.0"], ["a = 2.0"])
 
 
@@ -307,6 +307,17 @@ def test_inline_array_of_joints_changes_one_row(tmp_path):
     assert added == ["    { theta = 0.0, d = 12.5, a = 275.0, alpha = 180.0 },"]
     _new, removed, added = edited(tmp_path, INLINE, lambda r: editing.insert_joint(r, 1))
     assert removed == [] and len(added) == 1 and added[0].startswith("    { ")
+
+
+def test_windows_line_ends_stay_windows_line_ends(tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_bytes(COMMENTED.replace("\n", "\r\n").encode("utf-8"))
+    robot = editing.set_pose(editing.insert_joint(load(path), 1), "side", (1.0, 2.0, 3.0, 4.0))
+    save(robot, path)
+    raw = path.read_bytes()
+    assert raw.count(b"\n") == raw.count(b"\r\n") > len(COMMENTED.splitlines())
+    assert load(path) == robot
+    assert comments(raw.decode("utf-8")) == comments(COMMENTED)
 
 
 def test_save_as_starts_from_the_given_text(tmp_path):

@@ -197,7 +197,8 @@ def _real(path: Path) -> Path:
 
 def load(path: str | os.PathLike[str]) -> Robot:
     """Read a robot file; every failure is a RobotFileError naming the file."""
-    return load_with_stamp(path)[0]
+    path = Path(path)
+    return loads(_decode(read_file(path, MAX_FILE_BYTES)[0], path), str(path))
 
 
 def load_with_stamp(path: str | os.PathLike[str]) -> tuple[Robot, FileStamp]:
@@ -298,6 +299,8 @@ def render(robot: Robot, base_text: str | None = None) -> str:
             tomllib.loads(base)
             data, defaults = robot_to_dict(robot, full=True), _defaults(robot)
             text = update_text(base, data, defaults, current, ordered=("poses",))
+            if "\r\n" in base and base.count("\n") == base.count("\r\n"):  # Windows lines
+                text = text.replace("\r\n", "\n").replace("\n", "\r\n")
         except Exception:  # tomlkit fails in many ways; then a fresh document is written
             text = None
         if _reads_back(text, robot):

@@ -114,8 +114,14 @@ def _reorder(table: Any, new: Mapping[str, Any]) -> None:
     stay: set[str] = set()
     for block in difflib.SequenceMatcher(None, kept, wanted, autojunk=False).get_matching_blocks():
         stay.update(kept[block.a : block.a + block.size])
+    move = [k for k in kept if k not in stay]
+    for count in range(1, len(move) + 1):  # rather the last ones (a pose added again)
+        tail = set(wanted[-count:])
+        if [k for k in kept if k not in tail] == [k for k in wanted if k not in tail]:
+            move = wanted[-count:]
+            break
     container = table.value if isinstance(table, Table | InlineTable) else table
-    moving = {k: container.item(k) for k in kept if k not in stay}
+    moving = {k: container.item(k) for k in move}
     for key in moving:
         del table[key]
     for key in wanted:

@@ -44,7 +44,7 @@ from dhsim_tui.screens.editor_table import (
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import OpenRobot
-from dhsim_tui.screens.save_flow import file_text, is_bundled, save_flow
+from dhsim_tui.screens.save_flow import is_bundled, save_flow
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
 __all__ = ["EditorScreen", "is_bundled"]
@@ -334,7 +334,6 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             self.robot,
             self.path or self.template,
             self.stamp,
-            base_text=file_text(self.path or self.template),
             save_as=save_as,
             report=self.say,
         )

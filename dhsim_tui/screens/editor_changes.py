@@ -10,6 +10,9 @@ from dhsim_tui.screens.editor_table import number, numbers
 
 #: how many changes a message lists before "and N more"
 SHOWN = 2
+#: old and new values longer than this together are not quoted (the status
+#: line has two lines at 80 columns; the table shows the new value)
+QUOTED = 60
 
 
 def describe_change(before: Robot, after: Robot) -> str:
@@ -38,7 +41,7 @@ def _changes(before: Robot, after: Robot) -> list[str]:
         ("tool rpy", numbers(before.tool.rpy), numbers(after.tool.rpy)),
     ):
         if old != new:
-            changes.append(f"{name} {old} -> {new}")
+            changes.append(_quoted(name, old, new))
     if not joints:  # a joint edit moves pose values with it: not news
         changes += _pose_changes(before, after)
     return changes
@@ -79,5 +82,12 @@ def _pose_changes(before: Robot, after: Robot) -> list[str]:
         changes.append(f"pose {printable(name)} added")
     for name in old.keys() & new.keys():
         if old[name] != new[name]:
-            changes.append(f"pose {printable(name)} {numbers(old[name])} -> {numbers(new[name])}")
+            what = f"pose {printable(name)}"
+            changes.append(_quoted(what, numbers(old[name]), numbers(new[name])))
     return sorted(changes)
+
+
+def _quoted(what: str, old: str, new: str) -> str:
+    if len(old) + len(new) > QUOTED:
+        return f"{what} changed"
+    return f"{what} {old} -> {new}"

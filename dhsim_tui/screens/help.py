@@ -51,7 +51,7 @@ class HelpScreen(ModalScreen[None]):
             box.border_subtitle = "escape closes"
             yield Static(table)
             if self._notes:
-                yield Static(Text(printable(self._notes).replace("\\n", "\n")), classes="notes")
+                yield Static(Text(self._notes), classes="notes")  # written here, not read
 
     def action_close(self) -> None:
         self.dismiss(None)

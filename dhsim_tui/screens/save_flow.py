@@ -84,7 +84,10 @@ async def save_flow(
     """Save ``robot`` to ``path`` (expecting the file ``stamp`` describes), or
     ask for a name when there is no path, it is a bundled file, or
     ``save_as``. None when cancelled or failed, after telling the user
-    (``report``, else a notification); everything stays in memory."""
+    (``report``, else a notification); everything stays in memory.
+
+    ``base_text`` (default: what ``path`` holds) is where a new file starts,
+    so the comments of the file the robot came from are kept."""
 
     def tell(message: str, error: bool = False) -> None:
         if report is not None:
@@ -92,6 +95,8 @@ async def save_flow(
         else:
             app.notify(message, severity="error" if error else "information", timeout=8)
 
+    if base_text is None:
+        base_text = file_text(path)
     target: Path | None = path
     expect: FileStamp | EllipsisType | None = stamp
     if path is None or save_as or is_bundled(path):
@@ -124,7 +129,9 @@ async def save_flow(
                 return await save_flow(
                     app, robot, target, None, base_text=base_text, save_as=True, report=report
                 )
-            tell(failure(exc, target), True)
+            tell(
+                f"not saved: the file is read-only — {short_path(target, MESSAGE_PATH_LIMIT)}", True
+            )
             return None
         except (DhsimError, OSError, ValueError) as exc:
             tell(failure(exc, target), True)
@@ -143,11 +150,12 @@ def _why(error: FileChangedError) -> str:
     return ""
 
 
-def _stamp_now(target: Path) -> FileStamp | None:
+def _stamp_now(target: Path) -> FileStamp | EllipsisType | None:
+    """What "overwrite" expects: the file as it is now (no check if it cannot be read)."""
     try:
         return read_stamp(target)
     except RobotFileError:
-        return None
+        return ...
 
 
 def _reload(target: Path, tell: Report) -> SaveResult | None:
