@@ -288,3 +288,27 @@ async def test_pilot_apps_never_look_for_recoveries(recovery_folder, robot_file)
         await pilot.pause()
         assert isinstance(app.screen, ControlScreen)
     assert os.path.exists(recovery_file(robot_file))
+
+
+async def test_opening_a_robot_in_the_editor_offers_its_recovery(recovery_folder, robot_file):
+    """ctrl+o in the editor, like the start, offers the changes a crash kept."""
+    robot = changed(robot_file)
+    write_recovery(robot, robot_file)
+    app = DhsimApp(*load_robot("gantry"), start="edit", animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await pilot.press("ctrl+o")
+        await pilot.pause()
+        app.screen.query_one("#path").focus()
+        for key in str(robot_file):
+            await pilot.press(key)
+        await pilot.press("enter")
+        await pilot.pause()
+        assert isinstance(app.screen, Choice)
+        await pilot.press("enter")  # restore
+        await pilot.pause()
+        editor = app.screen
+        assert isinstance(editor, EditorScreen)
+        assert editor.robot == robot and editor.dirty
+        assert editor.saved == load(robot_file) and editor.path == robot_file
+    assert find_recovery(robot_file) is None

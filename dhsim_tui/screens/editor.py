@@ -44,6 +44,7 @@ from dhsim_tui.screens.editor_table import (
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import OpenRobot
+from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import is_bundled, save_flow
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
@@ -372,7 +373,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         if result is None:
             return
         robot, path, stamp = result
-        self.history = editing.History(robot)
+        found = await offer_recovery(self.app, path, robot)  # changes kept by a crash
+        self.history = editing.History(found.robot if found else robot)
         bundled = is_bundled(path)
         self.path = None if bundled else path
         self.template = path if bundled else None

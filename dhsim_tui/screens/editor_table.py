@@ -18,6 +18,7 @@ from textual.widgets import DataTable
 
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
+from dhsim_tui.core.validation import fmt
 
 Cell = str | Text
 
@@ -46,14 +47,9 @@ JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "min", "max")
 
 
 def number(value: float) -> str:
-    """The shortest text that reads back as exactly ``value``: ``70.125``,
-    ``0.089459``, ``-90``, ``1e-05``; never rounded (``-0`` shows as ``0``)."""
-    value = float(value)
-    if value == 0:
-        return "0"
-    if value.is_integer() and abs(value) < 1e16:
-        return str(int(value))
-    return repr(value)
+    """The shortest text that reads back as exactly ``value`` (the core's
+    :func:`fmt`): ``70.125``, ``0.089459``, ``-90``; never rounded."""
+    return fmt(value)
 
 
 def numbers(values: Sequence[float]) -> str:
