@@ -8,7 +8,6 @@ import sys
 from pathlib import Path
 
 from textual import work
-from textual.app import App
 from textual.binding import Binding
 from textual.driver import Driver
 from textual.drivers.linux_driver import LinuxDriver
@@ -33,6 +32,7 @@ from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.signals import DhsimDriver, SignalGuard
+from dhsim_tui.typeahead import KeysInOrder
 
 
 #: a stamp no file matches: the file changed between loading the robot and stamping it
@@ -67,7 +67,7 @@ def _joint_count(text: str) -> int:
     return int(value)
 
 
-class DhsimApp(App):
+class DhsimApp(KeysInOrder):
     """dhsim's terminal UI. Everything is reachable from the keyboard.
 
     ``start`` is ``"control"`` (the simulator), ``"edit"`` (the editor on

@@ -10,6 +10,7 @@ import random
 
 import pytest
 from textual import events
+from textual.screen import ModalScreen
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import Robot, dumps, load_robot, loads
@@ -94,4 +95,8 @@ async def test_random_keys_never_crash_or_corrupt(batch, tmp_path, monkeypatch):
             else:  # the monkey left the editor: the next sequence starts in a new one
                 app.open_editor(robot, path)
                 await pilot.pause()
+            for _ in range(4):  # typed keys now reach the dialogs they open: leave them
+                if not isinstance(app.screen, ModalScreen):
+                    break
+                await pilot.press("escape")
     assert len(seen_states) > 10  # the monkey really edited things

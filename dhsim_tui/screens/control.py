@@ -5,12 +5,14 @@ for the frames and the read-out, asks the scene layer for the projected
 views, and hands the results to the widgets, which only draw.
 
 Keys change the state at once (every key counts, none is dropped), but the
-drawing is coalesced: a change marks the screen dirty and queues one redraw
-behind the keys already waiting, so a burst of auto-repeat draws once, not
-once per key, and never builds a backlog.
+drawing is coalesced: a change marks the screen dirty and queues one redraw,
+at most one a frame (1/60 s), so a burst of auto-repeat is drawn a few times,
+not once per key, and never builds a backlog.
 """
 
 from __future__ import annotations
+
+from time import monotonic
 
 from rich.text import Text
 from textual.app import ComposeResult
@@ -47,6 +49,7 @@ from dhsim_tui.screens.control_keys import (
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
+from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.cartesian_panel import TITLE as CARTESIAN_TITLE
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
@@ -103,6 +106,7 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         self._ready = False
         self._dirty = False  # q changed and the widgets don't show it yet
         self.redraws = 0  # how many times the pose was drawn (tests, benches)
+        self._drawn_at = 0.0  # when (time.monotonic)
         self.set_reactive(ControlScreen.q, robot.home)
 
     # -- layout -------------------------------------------------------------
@@ -154,15 +158,27 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
 
     # -- the one-way flow: q -> core -> scene -> widgets -----------------------
     def _invalidate(self) -> None:
-        """q changed: draw it once the keys already queued are handled."""
+        """q changed: draw it once the keys already queued are handled, and
+        no sooner than a frame after the last drawing (keys reach the screen
+        one at a time, see typeahead.py, so a burst is drawn a few times a
+        frame apart rather than once per key)."""
         if not self._dirty:
             self._dirty = True
-            self.call_later(self._redraw)
+            wait = self._drawn_at + FRAME - monotonic()
+            if wait > 0:
+                self.set_timer(wait, self._redraw)
+            else:
+                self.call_later(self._redraw)
 
     def _redraw(self) -> None:
-        """Draw the latest q if it isn't drawn yet (also before reading ``pose``)."""
-        if self._dirty:
-            self._refresh_pose()
+        """Draw the latest q if it isn't drawn yet; while more keys of a burst
+        wait, a frame later (they will change it again)."""
+        if not self._dirty:
+            return
+        if draw_later(self.app, self._drawn_at, monotonic()):
+            self.set_timer(FRAME, self._redraw)
+            return
+        self._refresh_pose()
 
     def _show_now(self) -> None:
         """Show the pose panels now (a changed read-out, row or mode)."""
@@ -175,6 +191,7 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         if not self._ready:  # a key that arrived before the screen was mounted
             return
         self._dirty = False
+        self._drawn_at = monotonic()
         self.redraws += 1
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])

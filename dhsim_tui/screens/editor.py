@@ -13,6 +13,7 @@ once per frame, however many keys came in it.
 from __future__ import annotations
 
 from pathlib import Path
+from time import monotonic
 
 from rich.text import Text
 from textual import work
@@ -46,6 +47,7 @@ from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import OpenRobot
 from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import is_bundled, save_flow
+from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
 __all__ = ["EditorScreen", "is_bundled"]
@@ -82,6 +84,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self.renderer = renderer
         self._ready = False
         self._redraw_pending = False
+        self._drawn_at = 0.0  # when the robot was last drawn (time.monotonic)
         #: the joints table's row for the cursor at the next redraw (after add, move)
         self._cursor_row: int | None = None
 
@@ -136,8 +139,14 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             self.call_after_refresh(self._redraw)
 
     def _redraw(self) -> None:
-        """Tables, title and preview from the current robot (one-way flow)."""
+        """Tables, title and preview from the current robot (one-way flow);
+        while more keys of a burst wait, a frame later."""
+        now = monotonic()
+        if draw_later(self.app, self._drawn_at, now):
+            self.set_timer(FRAME, self._redraw)
+            return
         self._redraw_pending = False
+        self._drawn_at = now
         robot = self.robot
         self._joints.show(joint_labels(robot), joint_rows(robot))
         self._joints.border_subtitle = f"* joint variable (home) · {limits_note(robot)}"
