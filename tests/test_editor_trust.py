@@ -34,7 +34,7 @@ from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.dialogs import FileChanged, ReadOnly, SaveGuard
 from dhsim_tui.screens.editor import QUIT_HINT, EditorScreen
 from dhsim_tui.screens.editor_changes import describe_change
-from dhsim_tui.screens.editor_table import number
+from dhsim_tui.screens.editor_table import joint_labels, number
 from dhsim_tui.screens.open_robot import OpenRobot
 from dhsim_tui.screens.save_flow import SaveResult, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
@@ -284,8 +284,16 @@ async def test_column_headers_show_units():
         table = editor(app).query_one("#joints-table")
         header = screen_lines(app)[table.region.y + 1 : table.region.y + 3]
         assert re.search(r"theta.*d.*a.*alpha", header[0])
-        assert re.search(r"\(deg\).*\(mm\).*\(mm\).*\(deg\)", header[1])
-        assert "min, max in deg" in screen_lines(app)[table.region.bottom - 1]
+        assert re.search(r"theta.*d.*a.*alpha.*min.*max", header[0])
+        assert re.search(r"\(deg\).*\(mm\).*\(mm\).*\(deg\).*\(deg\).*\(deg\)", header[1])
+
+
+def test_limit_units_follow_the_joint_types():
+    puma, stanford = load_robot("puma560")[0], load_robot("stanford")[0]
+    gantry = load_robot("gantry")[0]
+    assert joint_labels(puma)[6:] == ("min\n(deg)", "max\n(deg)")
+    assert joint_labels(gantry)[6:] == ("min\n(mm)", "max\n(mm)")
+    assert joint_labels(stanford)[6:] == ("min\n(deg|mm)", "max\n(deg|mm)")
 
 
 async def test_undo_and_redo_say_what_they_changed():

@@ -41,7 +41,6 @@ from dhsim_tui.screens.editor_table import (
     field_rows,
     joint_labels,
     joint_rows,
-    limits_note,
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import OpenRobot
@@ -149,7 +148,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self._drawn_at = now
         robot = self.robot
         self._joints.show(joint_labels(robot), joint_rows(robot))
-        self._joints.border_subtitle = f"* joint variable (home) · {limits_note(robot)}"
+        self._joints.border_subtitle = "* joint variable (its home value)"
         if self._cursor_row is not None:
             self._joints.move_cursor(row=min(self._cursor_row, robot.dof - 1))
             self._cursor_row = None

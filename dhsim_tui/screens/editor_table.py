@@ -66,19 +66,21 @@ def joint_labels(robot: Robot) -> tuple[str, ...]:
         f"d\n({unit})",
         f"a\n({unit})",
         "alpha\n(deg)",
-        "min",
-        "max",
+        f"min\n({limits_unit(robot)})",
+        f"max\n({limits_unit(robot)})",
     )
 
 
-def limits_note(robot: Robot) -> str:
-    """The unit of min and max, which depends on the joint's type."""
+def limits_unit(robot: Robot) -> str:
+    """The unit of min and max, which depends on the joint's type:
+    ``deg``, the length unit, or ``deg|mm`` for a mixed arm (R rows in deg,
+    P rows in mm)."""
     kinds = {j.is_revolute for j in robot.joints}
     if kinds == {True}:
-        return "min, max in deg"
+        return "deg"
     if kinds == {False}:
-        return f"min, max in {robot.units}"
-    return f"min, max: deg (R), {robot.units} (P)"
+        return robot.units
+    return f"deg|{robot.units}"
 
 
 def joint_rows(robot: Robot) -> list[tuple[str, tuple[Cell, ...]]]:
