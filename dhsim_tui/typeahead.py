@@ -20,8 +20,8 @@ from textual import events
 from textual.app import App
 from textual.screen import Screen
 
-#: rounds of the event loop a binding's worker gets to push its dialog
-SETTLE_ROUNDS = 12
+#: rounds for the messages a key's binding posted, when it started no worker
+MESSAGE_ROUNDS = 8
 #: how long a waiting key checks back (s), and the longest one key may hold
 #: the keys behind it (s) before they go on regardless
 POLL = 0.001
@@ -35,6 +35,8 @@ class KeysInOrder(App):
     _since = 0.0
     _held: list[events.Key]
     _polling = False
+    _settling = False
+    _before: tuple[Screen, frozenset[int]]
 
     @property
     def keys_waiting(self) -> bool:
@@ -55,23 +57,35 @@ class KeysInOrder(App):
                 return
             await self._send(event)
             return
-        workers, screen = len(self.workers), self.screen
         await super().on_event(event)  # a key coming back: its bindings run here
         if event is self._in_flight:
-            if len(self.workers) != workers or self.screen is not screen:
-                await self._settle(screen)  # it may be opening a dialog
-            self._in_flight = None
-            await self._release()
+            await self._handled()
 
     async def _send(self, event: events.Key) -> None:
         self._in_flight = event
+        self._before = (self.screen, self._modal_workers())  # what the key may change
         self._since = asyncio.get_running_loop().time()
+        self._settling = False
         await super().on_event(event)
         if event.is_forwarded:
-            self._poll_soon()
+            self._poll_soon()  # the app's loop must run: the binding runs there
         else:  # a priority binding took it, here and now
-            await self._settle()
-            self._in_flight = None
+            await self._handled()
+
+    async def _handled(self) -> None:
+        """The key in flight was handled: let the messages its binding posted
+        run for a few rounds (a table's ``enter`` posts CellSelected, whose
+        handler starts a dialog worker). Unless a dialog is on its way, hand
+        on the next key at once; otherwise check back until it is ready."""
+        self._settling = True
+        for _ in range(MESSAGE_ROUNDS):
+            if self._dialog_starting() or not self._messages_waiting():
+                break
+            await asyncio.sleep(0)
+        if self._settled():
+            await self._done()
+        else:
+            self._poll_soon()  # the app's loop must run for the worker to go on
 
     def _poll_soon(self) -> None:
         if not self._polling:
@@ -81,15 +95,22 @@ class KeysInOrder(App):
     async def _poll(self) -> None:
         self._polling = False
         key = self._in_flight
-        if key is not None:
-            used = key._stop_propagation  # a widget used it: it will not come back
-            late = asyncio.get_running_loop().time() - self._since > HOLD_LIMIT
-            if not (used or late):
+        late = asyncio.get_running_loop().time() - self._since > HOLD_LIMIT
+        if key is not None and not late:
+            if not self._settling:
+                if key._stop_propagation:  # a widget used it: it will not come back
+                    await self._handled()
+                else:
+                    self._poll_soon()
+                return
+            if not self._settled():
                 self._poll_soon()
                 return
-            if used:
-                await self._settle()
-            self._in_flight = None
+        await self._done()
+
+    async def _done(self) -> None:
+        self._in_flight = None
+        self._settling = False
         await self._release()
 
     async def _release(self) -> None:
@@ -100,25 +121,43 @@ class KeysInOrder(App):
         if held:
             self._poll_soon()
 
-    async def _settle(self, screen: Screen | None = None) -> None:
-        """Let a binding's worker run; if it put a screen in front of
-        ``screen`` (default: the one in front now), wait (briefly) until that
-        screen and its focused widget are mounted."""
-        screen = self.screen if screen is None else screen
-        for _ in range(SETTLE_ROUNDS):
-            if self.screen is not screen:
-                break
-            await asyncio.sleep(0)
+    def _dialog_starting(self) -> bool:
+        """The key put a screen in front, or started a dialog worker
+        (``@work(group="modal")``) that has not finished."""
+        screen, workers = self._before
+        return self.screen is not screen or bool(self._modal_workers() - workers)
+
+    def _settled(self) -> bool:
+        """Nothing the key started is still on its way: no dialog is coming,
+        or the one that came is mounted with its focus handled (an Input
+        selects its text then), so the next key is typed into it."""
+        screen, _ = self._before
         if self.screen is screen:
-            return
-        loop = asyncio.get_running_loop()
-        deadline = loop.time() + HOLD_LIMIT
-        while loop.time() < deadline:
-            front = self.screen
-            focused = front.focused
-            if front.is_mounted and (focused is None or focused.is_mounted):
-                return
-            await asyncio.sleep(POLL)
+            return not self._dialog_starting()
+        focused = self.screen.focused
+        return self.screen.is_mounted and (
+            focused is None or (focused.is_mounted and focused._message_queue.empty())
+        )
+
+    def _modal_workers(self) -> frozenset[int]:
+        """The dialog workers (``@work(group="modal")``) not finished yet."""
+        return frozenset(
+            id(worker)
+            for worker in self.workers
+            if worker.group == "modal" and not worker.is_finished
+        )
+
+    def _messages_waiting(self) -> bool:
+        """A message waits in the focused widget or one of its ancestors up to
+        the screen (where the effects of a key bubble)."""
+        node = self.focused or self.screen
+        while node is not None:
+            if not node._message_queue.empty():
+                return True
+            if node is self.screen:
+                return False
+            node = node._parent
+        return False
 
 
 #: a frame (s): how long a screen that put off drawing waits before it looks again

@@ -199,7 +199,7 @@ def test_stop_and_cont_never_hang_q(robot_file, recovery_env):
                 term.clear_screen()
                 term.kill(signal.SIGCONT)
             for term in terms:  # after a continue, the screen is drawn again
-                term.wait_for("Th1")
+                term.wait_for("Th1", timeout=60)  # ten repaints on a loaded machine
         for term in terms:
             term.send("q")
         for term in terms:

@@ -30,7 +30,18 @@ class OrderedInput(Input):
     was typed. Here the Input runs its own bindings as the key arrives.
     """
 
+    _typed = False  # a key reached it (its Focus event may come later)
+
+    def _on_focus(self, event: events.Focus) -> None:
+        """Select the text on focus (to type over it) only if nothing was
+        typed yet: in a burst the Focus event can arrive after the first
+        keys, and selecting then would let the next key replace them."""
+        if self._typed:
+            event.prevent_default()
+            self._restart_blink()
+
     async def _on_key(self, event: events.Key) -> None:
+        self._typed = True
         action = _INPUT_ACTIONS.get(event.key)
         if action is not None:
             event.stop()
