@@ -78,6 +78,7 @@ async def test_random_keys_never_crash_or_corrupt(batch, tmp_path, monkeypatch):
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, start="edit")
     seen_states = set()
+    edits, before = 0, robot
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.pause()
         for seed in range(batch * 100, (batch + 1) * 100):
@@ -92,6 +93,8 @@ async def test_random_keys_never_crash_or_corrupt(batch, tmp_path, monkeypatch):
                 assert isinstance(current, Robot)
                 assert loads(dumps(current)) == current, f"seed {seed}: {keys}"
                 seen_states.add(current)
+                edits += current != before
+                before = current
             else:  # the monkey left the editor: the next sequence starts in a new one
                 app.open_editor(robot, path)
                 await pilot.pause()
@@ -99,4 +102,6 @@ async def test_random_keys_never_crash_or_corrupt(batch, tmp_path, monkeypatch):
                 if not isinstance(app.screen, ModalScreen):
                     break
                 await pilot.press("escape")
-    assert len(seen_states) > 10  # the monkey really edited things
+    # the monkey really edited things (keys now reach the dialogs they open, so
+    # many sequences end typing into one): robots changed in many sequences
+    assert edits >= 5 and len(seen_states) > 3, (edits, len(seen_states))
