@@ -16,7 +16,7 @@ from dhsim_tui.core import Joint, Robot, load_robot, save
 from dhsim_tui.core.editing import set_pose
 from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.control_entry import short_path
+from dhsim_tui.screens.dialogs import short_path
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.widgets.pose_panel import PosePanel
@@ -331,7 +331,7 @@ async def test_a_failed_save_says_why_first_and_shows_all_of_it(tmp_path, monkey
 
 def test_short_path_keeps_both_ends():
     path = "/home/student/" + "deep/" * 30 + "arm.toml"
-    short = short_path(path)
+    short = short_path(path, 60)
     assert len(short) == 60 and short.startswith("/home/student/") and short.endswith("arm.toml")
     assert "…" in short
     assert short_path("robots/arm.toml") == "robots/arm.toml"

@@ -11,20 +11,11 @@ from dhsim_tui.core.jog import CARTESIAN_ROWS
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
+from dhsim_tui.screens.dialogs import short_path
 from dhsim_tui.screens.value_entry import ValueEntry
 
 #: a path in a status message longer than this is shortened in the middle
 PATH_WIDTH = 60
-
-
-def short_path(path: object, width: int = PATH_WIDTH) -> str:
-    """``path`` as text, its middle replaced by ``…`` when longer than ``width``
-    (the start says where, the end which file)."""
-    text = printable(str(path))
-    if len(text) <= width:
-        return text
-    head = (width - 1) // 3
-    return f"{text[:head]}…{text[len(text) - (width - 1 - head) :]}"
 
 
 def shorten_path_in(message: str, path: object) -> str:
@@ -34,7 +25,7 @@ def shorten_path_in(message: str, path: object) -> str:
         return message
     for quoted in dict.fromkeys((str(path), printable(str(path)))):
         if len(quoted) > PATH_WIDTH and quoted in message:
-            return message.replace(quoted, short_path(quoted))
+            return message.replace(quoted, short_path(quoted, PATH_WIDTH))
     return message
 
 
@@ -115,7 +106,7 @@ class ValueFlows:
             self.say(f"not saved: {reason} (pose {name} is kept in memory)", error=True)
         else:
             where = (
-                f"saved in {short_path(saved_to)}"
+                f"saved in {short_path(saved_to, PATH_WIDTH)}"
                 if saved_to
                 else "kept until you quit (e, ctrl+s saves)"
             )
