@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from dhsim_tui.app import DhsimApp
+from dhsim_tui.render.picture import ROLE_INDEX
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
 from dhsim_tui.core.ik import rotation_error
 from dhsim_tui.screens.control import ControlScreen
@@ -122,7 +123,7 @@ async def test_frames_below_the_floor_are_flagged():
         await pilot.pause()
         assert "below the floor: frame 1" in str(app.screen.query_one(PosePanel).render())
         view = app.screen.query_one("#view-front")
-        assert "red" in view.raster.palette[:1]  # the floor line is drawn red
+        assert ROLE_INDEX["floor_hit"] in view.picture.roles  # the floor is drawn as hit
         await pilot.press("enter", "ctrl+u", *"-10", "enter")  # back above the floor
         assert "below the floor" not in str(app.screen.query_one(PosePanel).render())
 

@@ -27,7 +27,7 @@ def test_a_100mm_link_is_as_long_across_as_it_is_up(cols, rows):
     """Draw a horizontal and a vertical 100 mm segment: same number of dots."""
     scene = ViewScene(
         VIEWS[1],
-        (Polyline((0.0, 100.0), (0.0, 0.0), "red"), Polyline((300.0, 300.0), (0.0, 100.0), "blue")),
+        (Polyline((0.0, 100.0), (0.0, 0.0), "x"), Polyline((300.0, 300.0), (0.0, 100.0), "z")),
         (1e9, 1e9),
         (-400.0, 400.0, -400.0, 400.0),
     )
@@ -52,8 +52,8 @@ def test_a_100mm_link_is_as_long_across_as_it_is_up(cols, rows):
                     ys.append(4 * r + dy)
         return max(xs) - min(xs), max(ys) - min(ys)
 
-    across, flat = dots("red")
-    tall_x, up = dots("blue")
+    across, flat = dots("x")
+    tall_x, up = dots("z")
     assert flat == 0 and tall_x == 0
     assert abs(across - up) <= 1  # one dot of rounding at most
 
@@ -76,17 +76,17 @@ def test_pedestal_and_floor():
     assert wire.floor_z == -250.0
     assert np.allclose(wire.pedestal, [[0, 0, -250], [0, 0, 0]])
     front = project(wire, VIEWS[1])
-    assert front.lines[0].colour == "gray" and front.lines[0].ys == (-250.0, -250.0)
-    assert front.lines[1].colour == "yellow"
-    assert not any(line.colour == "yellow" for line in project(wire, VIEWS[0]).lines)
+    assert front.lines[0].role == "floor" and front.lines[0].ys == (-250.0, -250.0)
+    assert front.lines[1].role == "pedestal"
+    assert not any(line.role == "pedestal" for line in project(wire, VIEWS[0]).lines)
     assert wire.warnings == ()
 
 
-def test_frames_below_the_floor_turn_the_floor_red():
+def test_frames_below_the_floor_mark_the_floor_as_hit():
     probe = Robot(
         "probe", (Joint("prismatic", 0.0, 50.0, 0.0, 0.0, -400.0, 400.0),), base_z="-z", base_x="+x"
     )
     wire = build_wireframe(probe, probe.kinematics.frames(probe.home))
     assert wire.below_floor == (1,)
     assert wire.warnings == ("below the floor: frame 1",)
-    assert project(wire, VIEWS[1]).lines[0].colour == "red"
+    assert project(wire, VIEWS[1]).lines[0].role == "floor_hit"

@@ -1,4 +1,9 @@
-"""Orthographic views of a wireframe and limits that keep both axes at one scale."""
+"""Orthographic views of a wireframe and limits that keep both axes at one scale.
+
+Lines carry a *role* ("x", "link", "floor", ...), not a colour: what a role
+looks like depends on the terminal (colours, monochrome, ASCII) and is the
+widgets' business.
+"""
 
 from __future__ import annotations
 
@@ -8,12 +13,16 @@ import numpy as np
 
 from dhsim_tui.scene.wireframe import Wireframe
 
-AXIS_COLOURS = ("red", "green", "blue")
+#: the roles of a frame's three axes, in order
+AXIS_ROLES = ("x", "y", "z")
+#: every role a scene line can have, in drawing order (later ones on top)
+ROLES = ("grid", "floor", "floor_hit", "pedestal", "link", "x", "y", "z", "tool")
 
 
 @dataclass(frozen=True)
 class View:
-    """A projection: which world axis runs right and which runs up."""
+    """A projection: which world axis runs right and which runs up
+    (``right`` and ``up`` are -1 for the 3-D view, which orbits)."""
 
     key: str
     title: str
@@ -21,16 +30,38 @@ class View:
     up: int
 
     @property
+    def is_3d(self) -> bool:
+        return self.right < 0
+
+    @property
+    def axis_names(self) -> tuple[str, str]:
+        """What the horizontal and vertical axes of the picture measure."""
+        if self.is_3d:
+            return ("", "")
+        return ("XYZ"[self.right], "XYZ"[self.up])
+
+    @property
     def caption(self) -> str:
-        return f"{self.title}  {'XYZ'[self.right]}→ {'XYZ'[self.up]}↑  ({VIEW_KEYS[self.key]})"
+        if self.is_3d:
+            return f"{self.title}  ({self.number})"
+        right, up = self.axis_names
+        return f"{self.title}  {right}→ {up}↑  ({self.number})"
+
+    @property
+    def number(self) -> str:
+        """The key that selects the view."""
+        return VIEW_KEYS[self.key]
 
 
-VIEW_KEYS = {"top": "1", "front": "2", "side": "3"}
-VIEWS: tuple[View, ...] = (
-    View("top", "Top", 0, 1),
-    View("front", "Front", 0, 2),
-    View("side", "Side", 1, 2),
-)
+VIEW_KEYS = {"top": "1", "front": "2", "side": "3", "iso": "4"}
+TOP = View("top", "Top", 0, 1)
+FRONT = View("front", "Front", 0, 2)
+SIDE = View("side", "Side", 1, 2)
+ISO = View("iso", "3-D", -1, -1)
+#: the orthographic views (one scale for all of them)
+ORTHO_VIEWS: tuple[View, ...] = (TOP, FRONT, SIDE)
+#: every view, in the order of their keys 1-4
+VIEWS: tuple[View, ...] = (*ORTHO_VIEWS, ISO)
 
 
 @dataclass(frozen=True)
@@ -39,46 +70,101 @@ class Polyline:
 
     xs: tuple[float, ...]
     ys: tuple[float, ...]
-    colour: str
+    role: str
+
+    @property
+    def colour(self) -> str:  # the name older code and tests use
+        return self.role
+
+
+@dataclass(frozen=True)
+class Tip:
+    """The end of one frame axis: where a letter can name it without colour."""
+
+    x: float
+    y: float
+    role: str  # "x", "y" or "z"
 
 
 @dataclass(frozen=True)
 class ViewScene:
     """One view ready to draw: 2-D polylines in draw order, the end effector,
-    and the region that must stay visible (the seed's work area)."""
+    the axis tips, and the region that must stay visible (the seed's work
+    area; for the 3-D view a region that holds it from every direction)."""
 
     view: View
     lines: tuple[Polyline, ...]
     end_effector: tuple[float, float]
     bounds: tuple[float, float, float, float]  # xmin, xmax, ymin, ymax
     units: str = ""
+    tips: tuple[Tip, ...] = ()
+    #: the arm's own extent (links and frame origins): what zooming centres on
+    arm_bounds: tuple[float, float, float, float] | None = None
+    #: spacing of the floor grid (3-D view), in the robot's unit
+    grid_step: float | None = None
 
 
-def _line(points: np.ndarray, view: View, colour: str) -> Polyline:
-    return Polyline(
-        tuple(points[:, view.right].tolist()), tuple(points[:, view.up].tolist()), colour
+def extent(xs: np.ndarray, ys: np.ndarray) -> tuple[float, float, float, float]:
+    """Bounding box of the finite points (xmin, xmax, ymin, ymax)."""
+    ok = np.isfinite(xs) & np.isfinite(ys)
+    if not ok.any():
+        return (0.0, 0.0, 0.0, 0.0)
+    return (
+        float(xs[ok].min()),
+        float(xs[ok].max()),
+        float(ys[ok].min()),
+        float(ys[ok].max()),
     )
 
 
+def wire_lines(
+    wire: Wireframe, to_2d, floor: list[Polyline]
+) -> tuple[tuple[Polyline, ...], tuple[Tip, ...], tuple[float, float], tuple]:
+    """The wireframe's lines through a projection ``to_2d((m, 3)) -> (xs, ys)``:
+    the given floor lines, pedestal, links and every frame's axes, the axis
+    tips, the end effector and the arm's extent, in the projection's plane."""
+
+    def line(points: np.ndarray, role: str) -> Polyline:
+        xs, ys = to_2d(points)
+        return Polyline(tuple(xs.tolist()), tuple(ys.tolist()), role)
+
+    lines = list(floor)
+    if wire.pedestal is not None:
+        lines.append(line(wire.pedestal, "pedestal"))
+    lines.append(line(wire.links, "link"))
+    gap = np.full((len(wire.origins), 1, 3), np.nan)
+    tips: list[Tip] = []
+    for k, role in enumerate(AXIS_ROLES):
+        # every frame's k-th axis as one polyline, segments separated by NaN
+        strokes = np.concatenate([wire.origins[:, None, :], wire.axes[:, k : k + 1, :], gap], 1)
+        lines.append(line(strokes.reshape(-1, 3)[:-1], role))
+        ends_x, ends_y = to_2d(wire.axes[:, k, :])
+        tips.extend(Tip(float(x), float(y), role) for x, y in zip(ends_x, ends_y, strict=True))
+    ex, ey = to_2d(wire.end_effector[None, :])
+    arm_x, arm_y = to_2d(np.vstack([wire.links, wire.origins]))
+    return tuple(lines), tuple(tips), (float(ex[0]), float(ey[0])), extent(arm_x, arm_y)
+
+
 def project(wire: Wireframe, view: View) -> ViewScene:
+    """An orthographic view (top, front or side) of the wireframe."""
+    if view.is_3d:
+        raise ValueError("the 3-D view orbits: use scene.oblique.project_oblique")
     area = wire.area
     names = "xyz"
     xmin, xmax = area.limits(names[view.right])
     ymin, ymax = area.limits(names[view.up])
-    lines: list[Polyline] = []
+    floor: list[Polyline] = []
     if view.up == 2:  # the floor, seen edge-on in the front and side views
-        floor = "red" if wire.below_floor else "gray"  # something went through the floor
-        lines.append(Polyline((xmin, xmax), (wire.floor_z, wire.floor_z), floor))
-    if wire.pedestal is not None and view.up == 2:
-        lines.append(_line(wire.pedestal, view, "yellow"))
-    lines.append(_line(wire.links, view, "default"))
-    gap = np.full((len(wire.origins), 1, 3), np.nan)
-    for k, colour in enumerate(AXIS_COLOURS):
-        # every frame's k-th axis as one polyline, segments separated by NaN
-        strokes = np.concatenate([wire.origins[:, None, :], wire.axes[:, k : k + 1, :], gap], 1)
-        lines.append(_line(strokes.reshape(-1, 3)[:-1], view, colour))
-    ee = (float(wire.end_effector[view.right]), float(wire.end_effector[view.up]))
-    return ViewScene(view, tuple(lines), ee, (xmin, xmax, ymin, ymax), wire.units)
+        role = "floor_hit" if wire.below_floor else "floor"  # something went through it
+        floor.append(Polyline((xmin, xmax), (wire.floor_z, wire.floor_z), role))
+
+    def to_2d(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return points[:, view.right], points[:, view.up]
+
+    lines, tips, ee, arm = wire_lines(wire, to_2d, floor)
+    if view.up != 2:  # the pedestal stands straight up: a point from above
+        lines = tuple(line for line in lines if line.role != "pedestal")
+    return ViewScene(view, lines, ee, (xmin, xmax, ymin, ymax), wire.units, tips, arm)
 
 
 def equal_scale_limits(
@@ -100,6 +186,26 @@ def equal_scale_limits(
     per_dot = max((xmax - xmin) / nx, (ymax - ymin) / ny)
     if per_dot <= 0:
         per_dot = 1.0
-    cx, cy = (xmin + xmax) / 2, (ymin + ymax) / 2
+    return limits_at(((xmin + xmax) / 2, (ymin + ymax) / 2), per_dot, cols, rows, dots)
+
+
+def per_dot_needed(
+    bounds: tuple[float, float, float, float], cols: int, rows: int, dots=(2, 4)
+) -> float:
+    """The smallest length per dot that fits ``bounds`` in cols × rows cells."""
+    xmin, xmax, ymin, ymax = bounds
+    nx = max(cols * dots[0] - 1, 1)
+    ny = max(rows * dots[1] - 1, 1)
+    return max((xmax - xmin) / nx, (ymax - ymin) / ny)
+
+
+def limits_at(
+    centre: tuple[float, float], per_dot: float, cols: int, rows: int, dots=(2, 4)
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Limits of a cols × rows picture centred on ``centre`` at ``per_dot``."""
+    nx = max(cols * dots[0] - 1, 1)
+    ny = max(rows * dots[1] - 1, 1)
+    per_dot = per_dot if per_dot > 0 else 1.0
+    cx, cy = centre
     half_x, half_y = per_dot * nx / 2, per_dot * ny / 2
     return (cx - half_x, cx + half_x), (cy - half_y, cy + half_y)

@@ -16,8 +16,8 @@ from dhsim_tui.scene.projection import ViewScene, equal_scale_limits
 
 #: bit of each dot in a braille cell, indexed [dot row][dot column]
 _BITS = np.array([[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]], dtype=np.int32)
-#: colour of the end-effector mark
-MARKER = "magenta"
+#: the role of the end-effector mark
+MARKER = "tool"
 MARKER_CHAR = "◆"
 
 
@@ -61,13 +61,19 @@ def _sample_segments(px: np.ndarray, py: np.ndarray) -> tuple[np.ndarray, ...]:
     return xs, ys, first[seg]
 
 
-def rasterize(scene: ViewScene, cols: int, rows: int) -> Raster:
-    """Draw the scene's polylines, in order, at the same scale on both axes."""
-    xlim, ylim = equal_scale_limits(scene.bounds, cols, rows)
+def rasterize(
+    scene: ViewScene,
+    cols: int,
+    rows: int,
+    limits: tuple[tuple[float, float], tuple[float, float]] | None = None,
+) -> Raster:
+    """Draw the scene's polylines, in order, at the same scale on both axes:
+    ``limits`` (x and y) if given, else the scene's bounds fitted to the size."""
+    xlim, ylim = limits if limits is not None else equal_scale_limits(scene.bounds, cols, rows)
     nx, ny = 2 * cols, 4 * rows
     sx = (nx - 1) / (xlim[1] - xlim[0])
     sy = (ny - 1) / (ylim[1] - ylim[0])
-    palette = (*tuple(dict.fromkeys(line.colour for line in scene.lines)), MARKER)
+    palette = (*tuple(dict.fromkeys(line.role for line in scene.lines)), MARKER)
     # all polylines as one, a NaN point between them, each point tagged with its line
     xs_all: list[float] = []
     ys_all: list[float] = []
@@ -89,7 +95,7 @@ def rasterize(scene: ViewScene, cols: int, rows: int) -> Raster:
     bits = np.einsum("rycx,yx->rc", dots.reshape(rows, 4, cols, 2).astype(np.int32), _BITS)
     top = np.full(rows * cols, -1, dtype=np.int64)  # the last line drawn in each cell owns it
     np.maximum.at(top, (ys // 4) * cols + xs // 2, line_of)
-    colour_of_line = np.array([palette.index(line.colour) for line in scene.lines] + [-1])
+    colour_of_line = np.array([palette.index(line.role) for line in scene.lines] + [-1])
     colours = colour_of_line[top].reshape(rows, cols).astype(np.int16)
     chars = np.where(bits > 0, bits + 0x2800, 0x20)
     lines = ["".join(map(chr, row)) for row in chars.tolist()]

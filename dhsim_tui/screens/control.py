@@ -38,6 +38,7 @@ from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene import VIEWS, build_wireframe
+from dhsim_tui.scene.oblique import Orbit
 from dhsim_tui.screens.control_entry import ValueFlows
 from dhsim_tui.screens.control_keys import (
     CARTESIAN_ACTIONS,
@@ -45,6 +46,7 @@ from dhsim_tui.screens.control_keys import (
     HELP_NOTES,
     JOINT_ACTIONS,
     KEYS_LEGEND,
+    KEYS_LEGEND_ASCII,
     help_rows,
 )
 from dhsim_tui.screens.help import HelpScreen
@@ -74,7 +76,10 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
     | h / home | Every joint home (the D-H table's values) |
     | p | Next named pose |
     | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
-    | tab / 1 2 3 | Show the top, front or side view |
+    | tab / 1 2 3 4 | Select the top, front, side or 3-D view |
+    | z | Maximise the selected view, and back |
+    | + / - / 0 | Zoom in, out about the arm; the whole work area |
+    | a d / w s | Orbit the 3-D view (azimuth / elevation) |
     | c | Joint <-> Cartesian jogging (X, Y, Z, turns about the tool axes) |
     | P | Save the current joints as a named pose |
     | m | Smooth motion on or off (the footer shows which) |
@@ -93,7 +98,7 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
     view_index: reactive[int] = reactive(1, init=False, repaint=False)
     cartesian: reactive[bool] = reactive(False, init=False, repaint=False)
 
-    def __init__(self, robot: Robot, renderer: str = "braille", animate: bool = True) -> None:
+    def __init__(self, robot: Robot, renderer: str = "plotext", animate: bool = True) -> None:
         super().__init__()
         self.robot = robot
         self.renderer = renderer
@@ -125,7 +130,11 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
                 yield CartesianPanel(id="cartesian")
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
-            yield ViewsPanel(self.renderer, KEYS_LEGEND, id="views")
+                yield Static(
+                    KEYS_LEGEND_ASCII if getattr(self.app, "ascii_mode", False) else KEYS_LEGEND,
+                    id="keys",
+                )
+            yield ViewsPanel(self.renderer, id="views")
         yield Static("", id="too-small")
         yield Footer(compact=True)
 
@@ -368,6 +377,21 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
 
     def action_view(self, index: int) -> None:
         self.view_index = index
+
+    def action_maximise(self) -> None:
+        self._views.toggle_maximise()
+
+    def action_zoom(self, steps: int) -> None:
+        if steps == 0:
+            self._views.reset_zoom()
+        else:
+            self._views.zoom_by(steps)
+
+    def action_orbit(self, azimuth: int, elevation: int) -> None:
+        """Turn the 3-D view (and show it, if it is hidden)."""
+        if not self._views.views[3].display or not self._views.views[3].size.area:
+            self.view_index = 3
+        self._views.orbit_by(azimuth * Orbit.STEP, elevation * Orbit.STEP)
 
     def action_edit(self) -> None:
         self.app.action_edit()  # type: ignore[attr-defined]

@@ -12,12 +12,25 @@ from dhsim_tui.core.validation import fmt
 KEYS_LEGEND = (
     "[b]Keys[/]\n"
     "↑ ↓  joint          ← →  step (shift ×10)\n"
-    "[ ]  step size      ⏎    exact value\n"
+    "\\[ ]  step size      ⏎    exact value\n"
     "h    home           p    next pose\n"
-    "v    read-out       tab 1 2 3  view\n"
-    "c    Cartesian      P    save pose\n"
-    "m    smooth motion  e    edit table\n"
-    "?    help           q    quit"
+    "v    read-out       c    Cartesian\n"
+    "P    save pose      m    smooth motion\n"
+    "tab 1-4  view       z    maximise view\n"
+    "+ - 0  zoom         a d w s  orbit 3-D\n"
+    "e    edit table     ?    help   q  quit"
+)
+#: the same in 7-bit ASCII
+KEYS_LEGEND_ASCII = (
+    "[b]Keys[/]\n"
+    "up down  joint      left right  step\n"
+    "\\[ ]  step size      enter  exact value\n"
+    "h    home           p    next pose\n"
+    "v    read-out       c    Cartesian\n"
+    "P    save pose      m    smooth motion\n"
+    "tab 1-4  view       z    maximise view\n"
+    "+ - 0  zoom         a d w s  orbit 3-D\n"
+    "e    edit table     ?    help   q  quit"
 )
 
 #: joint jogging's arrow actions, and Cartesian jogging's (check_action shows one set)
@@ -42,6 +55,31 @@ def _arrows(mode: str, select: str, step: str, what: str, moves: str) -> list[Bi
                 tooltip="Ten steps up"),
     ]  # fmt: skip
 
+
+#: the views' keys, on the simulator and (1-4, z, zoom, orbit) in the editor's preview
+VIEW_BINDINGS = [
+    Binding("tab", "next_view", "View", show=False, id="view.next", tooltip="Select the next view"),
+    Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
+    Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
+    Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+    Binding("4", "view(3)", "3-D", show=False, id="view.iso", tooltip="3-D view (a d w s orbit it)"),
+    Binding("z", "maximise", "Maximise", show=False, id="view.maximise",
+            tooltip="The selected view over the whole screen; again: back"),
+    Binding("plus,equals_sign", "zoom(1)", "Zoom in", show=False, id="view.zoom_in",
+            tooltip="Zoom in about the arm"),
+    Binding("minus", "zoom(-1)", "Zoom out", show=False, id="view.zoom_out",
+            tooltip="Zoom out"),
+    Binding("0", "zoom(0)", "Whole area", show=False, id="view.zoom_reset",
+            tooltip="Back to the whole work area (reach + 30, floor at -base height)"),
+    Binding("a", "orbit(-1, 0)", "Orbit", show=False, id="view.orbit_left",
+            tooltip="Turn the 3-D view: azimuth down"),
+    Binding("d", "orbit(1, 0)", "Orbit", show=False, id="view.orbit_right",
+            tooltip="Turn the 3-D view: azimuth up"),
+    Binding("w", "orbit(0, 1)", "Orbit", show=False, id="view.orbit_up",
+            tooltip="Turn the 3-D view: look from higher"),
+    Binding("s", "orbit(0, -1)", "Orbit", show=False, id="view.orbit_down",
+            tooltip="Turn the 3-D view: look from lower"),
+]  # fmt: skip
 
 CONTROL_BINDINGS = [
     *_arrows("joint", "select", "step", "Joint", "Step"),
@@ -88,10 +126,7 @@ CONTROL_BINDINGS = [
         id="pose.readout",
         tooltip="OAT, roll-pitch-yaw or the full transform",
     ),
-    Binding("tab", "next_view", "View", show=False, id="view.next", tooltip="Show the next view"),
-    Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
-    Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
-    Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
+    *VIEW_BINDINGS,
     # c's label names the mode it switches to
     Binding(
         "c",
@@ -161,7 +196,10 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
             ),
         ),
         ("v", "read-out: OAT → roll/pitch/yaw → 4×4 transform"),
-        ("tab, 1 2 3", "show the top, front or side view"),
+        ("tab, 1 2 3 4", "select the top, front, side or 3-D view"),
+        ("z", "maximise the selected view (again: back)"),
+        ("+ - 0", "zoom in / out about the arm; 0: the whole work area"),
+        ("a d, w s", "orbit the 3-D view: azimuth, elevation (15° a press)"),
         ("c", "joint ⇄ Cartesian jogging: X, Y, Z in the world, turns about the tool"),
         ("P", "save the current joints as a named pose (and in the robot file)"),
         ("m", "smooth moves to home and poses on/off; escape stops"),
@@ -172,8 +210,9 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
 
 
 HELP_NOTES = (
-    "\nViews: red, green, blue = each joint frame's x, y, z axes; ◆ = the tool. "
-    "Both axes of a view have the same scale. Frames that share an origin "
-    "are drawn with longer axes.\nOAT (Unimation VAL): O = azimuth of the "
+    "\nViews: red, green, blue = each joint frame's x, y, z axes (without colour, "
+    "letters at their tips); ◆ = the tool. Top, front and side share one scale, "
+    "the same on both axes, with ticks in the robot's unit. Frames that share an "
+    "origin are drawn with longer axes.\nOAT (Unimation VAL): O = azimuth of the "
     "approach vector, A = its depression below horizontal, T = roll about it."
 )

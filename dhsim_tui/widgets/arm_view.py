@@ -1,195 +1,177 @@
-"""One orthographic view of the arm: a braille canvas (default) or plotext."""
+"""One view of the arm: a picture (plotext's, or bare braille) painted row by
+row, repainting only the cells that changed since the last frame."""
 
 from __future__ import annotations
 
+import numpy as np
 from rich.segment import Segment
 from rich.style import Style
 from rich.text import Text
-from textual.app import RenderResult
 from textual.geometry import Region
 from textual.strip import Strip
 from textual.widget import Widget
-from textual_plotext import PlotextPlot
 
-from dhsim_tui.scene import View, ViewScene, equal_scale_limits
-from dhsim_tui.scene.raster import Raster, rasterize
+from dhsim_tui.render.picture import NO_ROLE, Framing, Look, Picture
+from dhsim_tui.render.plotext_picture import PlotextPainter, bare_picture
+from dhsim_tui.scene import View, ViewScene
+from dhsim_tui.widgets.view_style import role_styles
 
-#: terminal colours of the scene's colour names (ANSI, so every terminal has them)
-STYLES = {
-    "red": Style(color="bright_red"),
-    "green": Style(color="bright_green"),
-    "blue": Style(color="bright_blue"),
-    "yellow": Style(color="yellow"),
-    "gray": Style(color="bright_black"),
-    "default": Style(),
-    "magenta": Style(color="bright_magenta", bold=True),
-}
-#: the same colours in plotext's names
-PLOTEXT_COLOURS = {
-    "red": "red+",
-    "green": "green+",
-    "blue": "blue+",
-    "yellow": "orange",
-    "gray": "gray",
-    "default": "default",
-    "magenta": "magenta+",
-}
+RENDERERS = ("plotext", "braille")
 
-VIEW_CSS = """
-    {name} {{
-        border: round $panel-lighten-2;
-        border-title-color: $text-muted;
-    }}
-    {name}.-selected {{ border: round $accent; border-title-color: $accent; }}
-"""
+
+def caption(view: View, ascii: bool = False) -> str:
+    """The view's name, the world axes its picture runs along, and its key."""
+    if view.is_3d:
+        return f"{view.title}  ({view.number})"
+    right, up = view.axis_names
+    arrows = ("> ", "^") if ascii else ("→ ", "↑")
+    return f"{view.title}  {right}{arrows[0]}{up}{arrows[1]}  ({view.number})"
 
 
 class ArmView(Widget):
-    """A view of the wireframe, same scale on both axes, as braille dots.
+    """A view of the wireframe, the same scale on both axes.
 
-    The raster is recomputed only when the scene or the widget's size
-    changes, and each row is painted from it as one strip.
+    ``show`` takes the scene and where to look; the picture is rebuilt at
+    once when the view is on screen (else when it next is), and only the
+    changed run of each row is refreshed, so a joint step repaints a few
+    cells rather than the whole view.
     """
 
-    DEFAULT_CSS = VIEW_CSS.format(name="ArmView")
+    DEFAULT_CSS = """
+    ArmView {
+        border: round $panel-lighten-2;
+        border-title-color: $text-muted;
+        border-subtitle-color: $text-muted;
+    }
+    ArmView.-selected { border: round $accent; border-title-color: $accent; }
+    """
 
-    def __init__(self, view: View, *, id: str | None = None) -> None:
+    def __init__(self, view: View, renderer: str = "plotext", *, id: str | None = None) -> None:
         super().__init__(id=id, classes="view")
         self.view = view
-        self.border_title = view.caption
+        self.renderer = renderer
+        self._painter = PlotextPainter() if renderer == "plotext" else None
         self._scene: ViewScene | None = None
-        self._raster: Raster | None = None
+        self._framing: Framing | None = None
+        self._picture: Picture | None = None
+        self._stale = True  # the picture does not show the latest scene
         self._strips: dict[int, Strip] = {}
+        self._styles: list[Style] | None = None
         self._base_style = Style()
 
+    # -- what the rest of the app sees ---------------------------------------
     @property
     def scene(self) -> ViewScene | None:
         return self._scene
 
     @property
-    def raster(self) -> Raster | None:
-        """What is on screen now (for tests and screenshots)."""
-        return self._raster
+    def picture(self) -> Picture | None:
+        """What is on screen now (tests and screenshots)."""
+        return self._picture
 
-    def show(self, scene: ViewScene) -> None:
-        """Draw this scene, repainting only the rows that differ from the last one."""
-        self._scene = scene
-        old = self._raster
+    @property
+    def look(self) -> Look:
+        app = self.app
+        return Look(
+            ascii=bool(getattr(app, "ascii_mode", False)),
+            mono=bool(app.no_color) or app.console.color_system is None,
+        )
+
+    def on_mount(self) -> None:
+        self.border_title = caption(self.view, self.look.ascii)
+
+    def show(self, scene: ViewScene, framing: Framing) -> None:
+        """Draw this scene; repaint only the cells that differ from the last."""
+        self._scene, self._framing = scene, framing
+        self._stale = True
+        if self.is_mounted and self.display and self._picture is not None:
+            self._redraw()
+
+    def restyle(self) -> None:
+        """The theme or colour mode changed: repaint every row."""
+        self._styles = None
+        self._strips.clear()
+        self.refresh()
+
+    # -- drawing --------------------------------------------------------------
+    def _draw(self) -> Picture | None:
         width, height = self.size
-        if old is None or old.colours.shape != (height, width) or not self.is_mounted:
-            self._raster = None
-            self._show_scale()
+        if self._scene is None or self._framing is None or width < 2 or height < 2:
+            return None
+        if self._painter is None:
+            return bare_picture(self._scene, width, height, self._framing, self.look)
+        return self._painter.draw(self._scene, width, height, self._framing, self.look)
+
+    def _redraw(self) -> None:
+        old = self._picture
+        new = self._draw()
+        self._stale = False
+        if new is None or old is None or new.size != old.size:
+            self._picture = new
+            self._strips.clear()
             self.refresh()
             return
-        new = rasterize(scene, width, height)
-        if new.xlim != old.xlim or new.ylim != old.ylim:
-            self._show_scale()
-        if new.palette != old.palette:
-            changed = list(range(height))
-        else:
-            recoloured = (new.colours != old.colours).any(axis=1)
-            changed = [y for y in range(height) if recoloured[y] or new.lines[y] != old.lines[y]]
-        self._raster = new
-        for y in changed:
+        self._picture = new
+        changed_roles = new.roles != old.roles
+        width = new.size[0]
+        for y, (before, after) in enumerate(zip(old.lines, new.lines, strict=True)):
+            row_roles = changed_roles[y]
+            if before == after and not row_roles.any():
+                continue
+            differs = np.frombuffer(before.encode("utf-32-le"), np.uint32) != np.frombuffer(
+                after.encode("utf-32-le"), np.uint32
+            )
+            columns = np.flatnonzero(differs | row_roles)
             self._strips.pop(y, None)
-            self.refresh(Region(0, y, width, 1))
+            start, end = int(columns[0]), int(columns[-1]) + 1
+            self.refresh(Region(start, y, min(end, width) - start, 1))
 
-    def _current(self) -> Raster | None:
+    def _current(self) -> Picture | None:
         width, height = self.size
-        if self._scene is None or width < 2 or height < 2:
-            return None
-        if self._raster is None or self._raster.colours.shape != (height, width):
-            self._raster = rasterize(self._scene, width, height)
-            self._strips = {}
-            self._base_style = self.rich_style
-        return self._raster
-
-    def _show_scale(self) -> None:
-        """The length of one terminal column, in the robot's unit, under the view."""
-        width, height = self.size
-        if self._scene is None or width < 2 or height < 2:
-            return
-        xlim, _ = equal_scale_limits(self._scene.bounds, width, height)
-        per_col = 2 * (xlim[1] - xlim[0]) / (2 * width - 1)
-        scale = f"1 col = {per_col:.3g} {self._scene.units}".rstrip()
-        if self.border_subtitle != scale:
-            self.border_subtitle = scale
+        if self._stale or self._picture is None or self._picture.size != (width, height):
+            self._picture = self._draw()
+            self._stale = False
+            self._strips.clear()
+        return self._picture
 
     def on_resize(self) -> None:
-        self._show_scale()
+        self._stale = True
+        self._strips.clear()
 
     def render_line(self, y: int) -> Strip:
-        raster = self._current()
-        if raster is None or y >= len(raster.lines):
-            return Strip.blank(self.size.width)
+        picture = self._current()
+        width = self.size.width
+        if picture is None or y >= len(picture.lines):
+            return Strip.blank(width)
         strip = self._strips.get(y)
         if strip is None:
-            strip = self._strips[y] = self._paint(raster, y)
+            strip = self._strips[y] = self._paint(picture, y)
         return strip
 
-    def _paint(self, raster: Raster, y: int) -> Strip:
-        base = self._base_style
-        line, colours = raster.lines[y], raster.colours[y].tolist()
+    def _paint(self, picture: Picture, y: int) -> Strip:
+        """One row as runs of equal style: one segment per run, not per glyph."""
+        if self._styles is None:
+            app = self.app
+            self._base_style = self.rich_style
+            self._styles = [
+                self._base_style + style
+                for style in role_styles(
+                    app.console.color_system,
+                    ansi_theme=app.current_theme.ansi,
+                    mono=self.look.mono,
+                )
+            ]
+        styles, base = self._styles, self._base_style
+        line, roles = picture.lines[y], picture.roles[y].tolist()
         segments: list[Segment] = []
         start = 0
         for x in range(1, len(line) + 1):
-            if x == len(line) or colours[x] != colours[start]:
-                colour = colours[start]
-                style = base if colour < 0 else base + STYLES[raster.palette[colour]]
-                segments.append(Segment(line[start:x], style))
+            if x == len(line) or roles[x] != roles[start]:
+                role = roles[start]
+                segments.append(Segment(line[start:x], base if role == NO_ROLE else styles[role]))
                 start = x
         return Strip(segments, len(line))
 
-
-class PlotextArmView(PlotextPlot):
-    """The same view drawn by plotext (``dhsim --renderer plotext``).
-
-    Kept for comparison: plotext rebuilds its whole canvas on every change,
-    10-15 ms a view here, which is why the braille canvas is the default.
-    """
-
-    DEFAULT_CSS = VIEW_CSS.format(name="PlotextArmView")
-
-    def __init__(self, view: View, *, id: str | None = None) -> None:
-        super().__init__(id=id, classes="view")
-        self.view = view
-        self.border_title = view.caption
-        self._scene: ViewScene | None = None
-        self._cache: tuple[tuple, Text] | None = None
-        self.plt.frame(False)
-        self.plt.xticks([])
-        self.plt.yticks([])
-
-    @property
-    def scene(self) -> ViewScene | None:
-        return self._scene
-
-    def show(self, scene: ViewScene) -> None:
-        self._scene = scene
-        self.refresh()
-
-    def render(self) -> RenderResult:
-        scene = self._scene
-        width, height = self.size
-        if scene is None or width < 2 or height < 2:
-            return ""
-        key = (id(scene), width, height, self.app.theme)
-        if self._cache is not None and self._cache[0] == key:
-            return self._cache[1]
-        xlim, ylim = equal_scale_limits(scene.bounds, width, height)
-        plt = self.plt
-        plt.clear_data()
-        plt.xlim(*xlim)
-        plt.ylim(*ylim)
-        for line in scene.lines:
-            plt.plot(line.xs, line.ys, marker="braille", color=PLOTEXT_COLOURS[line.colour])
-        plt.scatter(
-            [scene.end_effector[0]],
-            [scene.end_effector[1]],
-            marker="◆",
-            color=PLOTEXT_COLOURS["magenta"],
-        )
-        text = super().render()
-        assert isinstance(text, Text)
-        self._cache = (key, text)
-        return text
+    def describe(self) -> Text:
+        """The picture as plain text (for tests)."""
+        return Text("\n".join(self._picture.lines) if self._picture else "")

@@ -1,59 +1,190 @@
-"""The three views of the arm (and a legend), as one panel both screens use."""
+"""The four views of the arm (top, front, side, 3-D) and a one-line legend.
+
+Narrow terminals show the selected view; from 120×36 all four share a 2×2
+grid, and ``maximise`` gives the selected one the whole panel. The three
+orthographic views share one scale (100 mm is as many columns in each),
+the seed's work area by default; ``zoom`` narrows it about the arm.
+"""
 
 from __future__ import annotations
 
+import numpy as np
 from textual.app import ComposeResult
 from textual.containers import Container
 from textual.widgets import Static
 
+from dhsim_tui.render.picture import Framing
 from dhsim_tui.scene import VIEWS, Wireframe, project
-from dhsim_tui.widgets.arm_view import ArmView, PlotextArmView
+from dhsim_tui.scene.oblique import Orbit, camera, project_oblique
+from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene, per_dot_needed
+from dhsim_tui.widgets.arm_view import ArmView
 
-#: at and above this size a screen shows all three views at once
+#: at and above this size a screen shows all four views at once
 WIDE_SIZE = (120, 36)
+#: zoom factors: each + or - multiplies or divides by ZOOM_STEP, within these
+ZOOM_STEP = 1.5
+ZOOM_RANGE = (1 / 4, 64.0)
+#: room the axes take in a plotext view: y labels and axis, x axis and labels
+AXES_ROOM = (7, 2)
 
 
 def is_wide(width: int, height: int) -> bool:
     return width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1]
 
 
-LEGEND = (
-    "[b]Frames[/]  [bold ansi_bright_red]━━[/] x   [bold ansi_bright_green]━━[/] y   "
-    "[bold ansi_bright_blue]━━[/] z   [bold ansi_bright_magenta]◆[/] tool\n"
-    "links ━━   pedestal [ansi_yellow]━━[/]   floor [ansi_bright_black]┄┄[/]\n\n"
-)
+def legend(ascii: bool, mono: bool) -> str:
+    """One line, never wrapped: what each mark means."""
+    if ascii:
+        return "axes x y z   @ tool   # links   : pedestal   _ floor"
+    if mono:
+        return "axes: letters x y z at their tips   ◆ tool   ━ links   ┄ floor"
+    return (
+        "[b]axes[/] [#ff4f4f]━[/] x  [#33cc33]━[/] y  [#4f86ff]━[/] z   "
+        "[#ff55ff]◆[/] tool   ━ links   [#c8a000]━[/] pedestal   [#8a8a8a]┄[/] floor"
+    )
 
 
 class ViewsPanel(Container):
-    """Top, front and side views. Narrow: the selected one; wide (the screen
-    has class ``-wide``): all three in a grid with the legend."""
+    """Top, front, side and 3-D views of the same wireframe."""
 
-    def __init__(self, renderer: str = "braille", keys: str = "", *, id: str | None = None):
+    DEFAULT_CSS = """
+    ViewsPanel .legend { height: 1; padding: 0 1; color: $text-muted; }
+    """
+
+    def __init__(self, renderer: str = "plotext", *, id: str | None = None):
         super().__init__(id=id, classes="views-panel")
         self.renderer = renderer
-        self.keys = keys
         self.selected = 1
+        self.zoom = 1.0
+        self.orbit = Orbit()
+        self.maximised = False
+        self._zoom_centre: np.ndarray | None = None  # world point zoomed about
+        self._wire: Wireframe | None = None
 
     def compose(self) -> ComposeResult:
-        view_class = PlotextArmView if self.renderer == "plotext" else ArmView
-        for view in VIEWS:
-            yield view_class(view, id=f"view-{view.key}")
-        yield Static(LEGEND + self.keys, classes="legend")
+        with Container(classes="views-grid"):
+            for view in VIEWS:
+                yield ArmView(view, self.renderer, id=f"view-{view.key}")
+        yield Static("", classes="legend", markup=True)
 
     def on_mount(self) -> None:
-        self._views = [self.query_one(f"#view-{view.key}") for view in VIEWS]
+        self._views = list(self.query(ArmView))
+        app = self.app
+        mono = bool(app.no_color) or app.console.color_system is None
+        self.query_one(".legend", Static).update(legend(getattr(app, "ascii_mode", False), mono))
         self.select(self.selected)
 
     @property
-    def views(self) -> list[ArmView | PlotextArmView]:
+    def views(self) -> list[ArmView]:
         return self._views
 
-    def show(self, wire: Wireframe) -> None:
-        """Project the wireframe into every view (hidden ones are cheap)."""
-        for view, widget in zip(VIEWS, self._views, strict=True):
-            widget.show(project(wire, view))
+    @property
+    def selected_view(self) -> View:
+        return VIEWS[self.selected]
 
+    # -- what is drawn ------------------------------------------------------
+    def show(self, wire: Wireframe) -> None:
+        """Project the wireframe into every view at one scale."""
+        self._wire = wire
+        scenes = [project(wire, view) for view in ORTHO_VIEWS]
+        scenes.append(project_oblique(wire, self.orbit))
+        for widget, scene, framing in zip(self._views, scenes, self._framings(scenes), strict=True):
+            widget.show(scene, framing)
+        self._show_zoom()
+
+    def _canvas(self) -> tuple[int, int]:
+        """The plot area of a view (all views are the same size)."""
+        widget = self._views[self.selected]
+        width, height = widget.size
+        if width < 2 or height < 2:
+            width, height = 40, 18
+        if self.renderer == "plotext":
+            width, height = width - AXES_ROOM[0], height - AXES_ROOM[1]
+        return max(width, 2), max(height, 2)
+
+    def _framings(self, scenes: list[ViewScene]) -> list[Framing]:
+        cols, rows = self._canvas()
+        ortho = max(per_dot_needed(s.bounds, cols, rows) for s in scenes[:3]) / self.zoom
+        iso = per_dot_needed(scenes[3].bounds, cols, rows) / self.zoom
+        right, up = camera(self.orbit)
+        framings = []
+        for scene in scenes:
+            view = scene.view
+            if self._zoom_centre is not None:
+                c = self._zoom_centre
+                if view.is_3d:  # the 3-D picture is measured from the work area's centre
+                    c = c - self._area_centre()
+                    centre = (float(c @ right), float(c @ up))
+                else:
+                    centre = (float(c[view.right]), float(c[view.up]))
+            else:
+                b = scene.bounds
+                centre = ((b[0] + b[1]) / 2, (b[2] + b[3]) / 2)
+            framings.append(Framing(centre, iso if view.is_3d else ortho))
+        return framings
+
+    def _area_centre(self) -> np.ndarray:
+        area = self._wire.area if self._wire is not None else None
+        if area is None:
+            return np.zeros(3)
+        return np.array(
+            [(area.xmin + area.xmax) / 2, (area.ymin + area.ymax) / 2, (area.zmin + area.zmax) / 2]
+        )
+
+    def _redraw(self) -> None:
+        if self._wire is not None:
+            self.show(self._wire)
+
+    def _show_zoom(self) -> None:
+        for widget in self._views:
+            scene = widget.scene
+            parts = []
+            if widget.view.is_3d:
+                parts.append(self.orbit.ascii_label if self._ascii else self.orbit.label)
+                if scene is not None and scene.grid_step:
+                    parts.append(f"grid {scene.grid_step:g} {scene.units}".rstrip())
+            if self.zoom != 1.0:
+                parts.append(f"zoom {self.zoom:.3g}x")
+            subtitle = "  ".join(parts)
+            if widget.border_subtitle != subtitle:
+                widget.border_subtitle = subtitle
+
+    @property
+    def _ascii(self) -> bool:
+        return bool(getattr(self.app, "ascii_mode", False))
+
+    # -- keys ---------------------------------------------------------------
     def select(self, index: int) -> None:
         self.selected = index % len(VIEWS)
         for i, widget in enumerate(self._views):
             widget.set_class(i == self.selected, "-selected")
+
+    def toggle_maximise(self) -> bool:
+        """The selected view alone, over the whole screen (the screen's
+        ``-max`` class hides everything else); again: back."""
+        self.maximised = not self.maximised
+        self.screen.set_class(self.maximised, "-max")
+        return self.maximised
+
+    def zoom_by(self, steps: int) -> None:
+        """Zoom in (steps > 0) or out about the arm as it is now."""
+        if self._wire is None:
+            return
+        if self._zoom_centre is None:
+            points = np.vstack([self._wire.links, self._wire.origins])
+            self._zoom_centre = (points.min(axis=0) + points.max(axis=0)) / 2
+        self.zoom = float(np.clip(self.zoom * ZOOM_STEP**steps, *ZOOM_RANGE))
+        self._redraw()
+
+    def reset_zoom(self) -> None:
+        """Back to the seed's work area: reach + 30 on every side, floor at -h."""
+        self.zoom = 1.0
+        self._zoom_centre = None
+        self._redraw()
+
+    def orbit_by(self, d_azimuth: float, d_elevation: float) -> None:
+        self.orbit = self.orbit.turned(d_azimuth, d_elevation)
+        self._redraw()
+
+    def on_resize(self) -> None:
+        self.call_after_refresh(self._redraw)

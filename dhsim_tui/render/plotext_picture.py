@@ -1,0 +1,290 @@
+"""A view's picture built by plotext: axes with numbered ticks in the robot's
+unit, and the wireframe placed on plotext's canvas.
+
+plotext 5 draws a braille line in about 4 ms a view (its per-dot work is pure
+Python) and drops the dots of one line where two lines share a cell. So the
+dots are put together by ``scene.raster`` (numpy, 0.15 ms) and plotext gets
+each occupied cell as one point of a scatter, with the finished braille glyph
+as its marker; plotext lays out the axes, ticks and labels and places every
+cell (about 2 ms a view). In 7-bit ASCII plotext draws the lines itself, one
+ASCII marker per role (``x``, ``y``, ``z`` for the axes, ``#`` for links).
+
+Only plotext's documented figure methods are used, on a figure of our own:
+``plotext._figure._figure_class`` is the one private name (the class behind
+``plotext.plot``; textual-plotext uses it too), so plotext is pinned exactly
+and ``tests/test_render.py`` fails if it changes. No NaN or inf ever reaches
+plotext: pen lifts become ``None`` (plotext 5's own gap marker) and every
+number is checked finite.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+from plotext._figure import _figure_class
+
+from dhsim_tui.render.picture import (
+    CELL_ROLES,
+    NO_ROLE,
+    ROLE_INDEX,
+    Framing,
+    Look,
+    Picture,
+    blank,
+)
+from dhsim_tui.scene.projection import ViewScene, limits_at
+from dhsim_tui.scene.raster import MARKER, rasterize
+
+#: plotext's markers for each role in 7-bit ASCII
+ASCII_MARKS = {
+    "grid": ".",
+    "floor": "_",
+    "floor_hit": "!",
+    "pedestal": ":",
+    "link": "#",
+    "x": "x",
+    "y": "y",
+    "z": "z",
+    "tool": "@",
+}
+_MARK_ROLE = {mark: ROLE_INDEX[role] for role, mark in ASCII_MARKS.items()}
+#: plotext's frame glyphs in 7-bit ASCII
+_ASCII_FRAME = str.maketrans("─│┤┬└┼┌┐┘├┴", "-|+++++++++")
+_SGR = re.compile(r"\x1b\[[0-9;]*m")
+#: the smallest picture that still gets axes (columns, rows)
+MIN_SIZE = (16, 6)
+_AXES = ROLE_INDEX["axes"]
+
+
+def nice_step(least: float) -> float:
+    """The smallest 1, 2 or 5 × 10^k that is at least ``least``."""
+    if not least > 0 or not math.isfinite(least):
+        return 1.0
+    power = 10.0 ** math.floor(math.log10(least))
+    for factor in (1.0, 2.0, 5.0, 10.0):
+        if factor * power >= least * (1 - 1e-12):
+            return factor * power
+    return 10.0 * power
+
+
+def tick_values(lim: tuple[float, float], step: float) -> list[float]:
+    first = math.ceil(lim[0] / step - 1e-9)
+    last = math.floor(lim[1] / step + 1e-9)
+    return [k * step for k in range(first, last + 1)]
+
+
+def tick_label(value: float, step: float) -> str:
+    decimals = max(0, -math.floor(math.log10(step) + 1e-12))
+    text = f"{value:.{decimals}f}"
+    return "0" if float(text) == 0 else text
+
+
+def _finite(values) -> list[float | None]:
+    """Plain floats for plotext, ``None`` for a pen lift; never NaN or inf."""
+    return [float(v) if math.isfinite(v) else None for v in values]
+
+
+def _clip(xs: np.ndarray, ys: np.ndarray, xlim, ylim) -> tuple[list, list]:
+    """The polyline's segments cut to the limits (Liang–Barsky), as points
+    with ``None`` between strokes: plotext then never walks a line that runs
+    far off the picture, and gets no NaN."""
+    out_x: list[float | None] = []
+    out_y: list[float | None] = []
+    for x0, y0, x1, y1 in zip(xs[:-1], ys[:-1], xs[1:], ys[1:], strict=True):
+        if not (math.isfinite(x0) and math.isfinite(y0) and math.isfinite(x1) and math.isfinite(y1)):
+            continue
+        t0, t1 = 0.0, 1.0
+        dx, dy = x1 - x0, y1 - y0
+        for p, q in ((-dx, x0 - xlim[0]), (dx, xlim[1] - x0), (-dy, y0 - ylim[0]), (dy, ylim[1] - y0)):
+            if p == 0:
+                if q < 0:
+                    t0, t1 = 1.0, 0.0
+                continue
+            t = q / p
+            if p < 0:
+                t0 = max(t0, t)
+            else:
+                t1 = min(t1, t)
+        if t0 > t1:
+            continue
+        if out_x:
+            out_x.append(None)
+            out_y.append(None)
+        out_x += [float(x0 + t0 * dx), float(x0 + t1 * dx)]
+        out_y += [float(y0 + t0 * dy), float(y0 + t1 * dy)]
+    return out_x, out_y
+
+
+class PlotextPainter:
+    """One view's plotext figure, kept between frames.
+
+    plotext lays out the axes, ticks and labels; that frame is rebuilt only
+    when the size, limits or ticks change (resize, zoom). On a joint step
+    only the wireframe moves: its braille cells are put on the last frame's
+    canvas, where plotext would place them (``tests/test_render.py`` checks
+    that against plotext's own scatter of the same glyphs). In ASCII plotext
+    draws the lines itself, on every frame.
+    """
+
+    def __init__(self) -> None:
+        self.figure = _figure_class()
+        self.figure.theme("clear")  # no colours: roles are styled by the widget
+        self.builds = 0  # how many times plotext built a picture (tests)
+        self._frame_key: tuple | None = None
+        self._frame: tuple[list[str], np.ndarray] | None = None
+
+    def draw(self, scene: ViewScene, cols: int, rows: int, framing: Framing, look: Look) -> Picture:
+        if cols < MIN_SIZE[0] or rows < MIN_SIZE[1]:
+            return bare_picture(scene, cols, rows, framing, look)
+        with_ticks = not scene.view.is_3d  # the 3-D view's scale is in its caption
+        canvas_rows = rows - 2 if with_ticks else rows
+        # the y labels' width sets the canvas width: find the y ticks first
+        _, ylim = limits_at(framing.centre, framing.per_dot, 2, canvas_rows)
+        per_col, per_row = 2 * framing.per_dot, 4 * framing.per_dot
+        # one step on both axes: x labels (about 5 characters) a column
+        # apart at least, y labels two rows apart
+        widest = max(len(tick_label(v, 1.0)) for v in (*ylim, *self._x_span(framing, cols)))
+        step = nice_step(max((widest + 1) * per_col, 2 * per_row))
+        y_ticks = tick_values(ylim, step) if with_ticks else []
+        y_labels = [tick_label(v, step) for v in y_ticks]
+        label_width = max((len(label) for label in y_labels), default=0)
+        left = label_width + 1 if with_ticks else 0
+        canvas_cols = cols - left
+        xlim, ylim = limits_at(framing.centre, framing.per_dot, canvas_cols, canvas_rows)
+        x_ticks = tick_values(xlim, step) if with_ticks else []
+        x_labels = [tick_label(v, step) for v in x_ticks]
+        canvas = (left, 0, canvas_cols, canvas_rows)
+        if not all(map(math.isfinite, (*xlim, *ylim, *x_ticks, *y_ticks))):
+            return bare_picture(scene, cols, rows, framing, look)
+        layout = (cols, rows, xlim, ylim, tuple(x_ticks), tuple(y_ticks), with_ticks)
+        if look.ascii:  # plotext draws the lines too, with ASCII markers
+            self._layout(layout, x_labels, y_labels)
+            self._ascii_lines(scene, xlim, ylim)
+            lines, roles = self._build(cols, rows, canvas, ascii_marks=True)
+            lines = [line.translate(_ASCII_FRAME) for line in lines]
+            return Picture(tuple(lines), roles, xlim, ylim, canvas)
+        if layout != self._frame_key or self._frame is None:
+            self._layout(layout, x_labels, y_labels)
+            self._frame = self._build(cols, rows, canvas, ascii_marks=False)
+            self._frame_key = layout
+        frame_lines, frame_roles = self._frame
+        chars, cell_roles = braille_cells(scene, canvas_cols, canvas_rows, xlim, ylim, look)
+        lines = [
+            frame_lines[y][:left] + "".join(chars[y]) if y < canvas_rows else frame_lines[y]
+            for y in range(rows)
+        ]
+        roles = frame_roles.copy()
+        roles[:canvas_rows, left:] = cell_roles
+        return Picture(tuple(lines), roles, xlim, ylim, canvas)
+
+    def _layout(self, layout: tuple, x_labels: list[str], y_labels: list[str]) -> None:
+        cols, rows, xlim, ylim, x_ticks, y_ticks, with_ticks = layout
+        fig = self.figure
+        fig.clear_data()
+        fig.xaxes(with_ticks, False)
+        fig.yaxes(with_ticks, False)
+        fig.plot_size(cols, rows)
+        fig.xlim(*xlim)
+        fig.ylim(*ylim)
+        fig.xticks(list(x_ticks), x_labels)
+        fig.yticks(list(y_ticks), y_labels)
+        # plotext draws ticks only for axes that hold data: one blank point
+        fig.scatter([(xlim[0] + xlim[1]) / 2], [(ylim[0] + ylim[1]) / 2], marker=" ")
+
+    def _build(self, cols: int, rows: int, canvas, *, ascii_marks: bool):
+        """plotext's picture as rows of text, and each cell's role: the
+        frame, ticks and labels are "axes"; in ASCII the marker names the
+        role of a canvas cell."""
+        text = _SGR.sub("", self.figure.build())
+        self.builds += 1
+        lines = [line.ljust(cols)[:cols] for line in text.split("\n")[:rows]]
+        lines += [" " * cols] * (rows - len(lines))
+        left, _, _, canvas_rows = canvas
+        roles = np.full((rows, cols), NO_ROLE, dtype=np.int8)
+        for y, line in enumerate(lines):
+            for x, ch in enumerate(line):
+                if ch == " ":
+                    continue
+                if y < canvas_rows and x >= left:
+                    roles[y, x] = _MARK_ROLE.get(ch, NO_ROLE) if ascii_marks else NO_ROLE
+                else:
+                    roles[y, x] = _AXES
+        return lines, roles
+
+    @staticmethod
+    def _x_span(framing: Framing, cols: int) -> tuple[float, float]:
+        half = framing.per_dot * cols  # at most the whole width, 2 dots a column
+        return (framing.centre[0] - half, framing.centre[0] + half)
+
+    def _ascii_lines(self, scene: ViewScene, xlim, ylim) -> None:
+        """plotext draws each role's lines with its ASCII marker."""
+        by_role: dict[str, tuple[list, list]] = {}
+        for line in scene.lines:
+            xs, ys = _clip(np.asarray(line.xs), np.asarray(line.ys), xlim, ylim)
+            if xs:
+                px, py = by_role.setdefault(line.role, ([], []))
+                if px:
+                    px.append(None)
+                    py.append(None)
+                px += xs
+                py += ys
+        for role, (xs, ys) in by_role.items():
+            self.figure.plot(xs, ys, marker=ASCII_MARKS[role])
+        ex, ey = scene.end_effector
+        if math.isfinite(ex) and math.isfinite(ey):
+            self.figure.scatter([ex], [ey], marker=ASCII_MARKS[MARKER])
+        return None
+
+
+def braille_cells(scene: ViewScene, cols: int, rows: int, xlim, ylim, look: Look):
+    """The wireframe's cells on a cols × rows canvas: braille glyphs (numpy
+    puts the dots together) and each cell's role; without colour, letters
+    name the axes at their tips."""
+    raster = rasterize(scene, cols, rows, (xlim, ylim))
+    chars = [list(line) for line in raster.lines]
+    role_of = np.array([ROLE_INDEX[r] for r in raster.palette] + [NO_ROLE], dtype=np.int8)
+    roles = role_of[raster.colours]  # colours == -1 picks NO_ROLE
+    if look.mono:
+        _label_tips(scene, chars, roles, xlim, ylim)
+    return chars, roles
+
+
+def _label_tips(scene: ViewScene, chars, roles: np.ndarray, xlim, ylim) -> None:
+    """Without colour, a letter at the end of every frame axis names it."""
+    rows, cols = roles.shape
+    sx = (2 * cols - 1) / (xlim[1] - xlim[0])
+    sy = (4 * rows - 1) / (ylim[1] - ylim[0])
+    tool = ROLE_INDEX[MARKER]
+    taken: set[tuple[int, int]] = set()
+    for tip in scene.tips:
+        if not (math.isfinite(tip.x) and math.isfinite(tip.y)):
+            continue
+        x = round((tip.x - xlim[0]) * sx) // 2
+        y = round((ylim[1] - tip.y) * sy) // 4
+        if 0 <= x < cols and 0 <= y < rows and (y, x) not in taken and roles[y, x] != tool:
+            chars[y][x] = tip.role
+            roles[y, x] = ROLE_INDEX[tip.role]
+            taken.add((y, x))
+
+
+def bare_picture(scene: ViewScene, cols: int, rows: int, framing: Framing, look: Look) -> Picture:
+    """The wireframe alone, every cell for the arm (no axes): the braille
+    renderer, and views too small for axes."""
+    if cols < 2 or rows < 2:
+        return blank(max(cols, 0), max(rows, 0))
+    xlim, ylim = limits_at(framing.centre, framing.per_dot, cols, rows)
+    raster = rasterize(scene, cols, rows, (xlim, ylim))
+    role_of = np.array([ROLE_INDEX[r] for r in raster.palette] + [NO_ROLE], dtype=np.int8)
+    roles = role_of[raster.colours]
+    chars = [list(line) for line in raster.lines]
+    if look.mono or look.ascii:
+        _label_tips(scene, chars, roles, xlim, ylim)
+    if look.ascii:
+        for y in range(rows):
+            for x in range(cols):
+                if roles[y, x] != NO_ROLE and ord(chars[y][x]) > 127:
+                    chars[y][x] = ASCII_MARKS[CELL_ROLES[roles[y, x]]]
+    lines = tuple("".join(row) for row in chars)
+    return Picture(lines, roles, xlim, ylim, (0, 0, cols, rows))
