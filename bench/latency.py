@@ -128,10 +128,7 @@ def main() -> None:
         f"{args.robot} at {width}x{height}, {views} {args.renderer} view(s), "
         f"{len(ms)} presses of right/left"
     )
-    print(
-        f"  key -> composed frame   median {median:6.1f} ms   "
-        f"p95 {p95:6.1f} ms"
-    )
+    print(f"  key -> composed frame   median {median:6.1f} ms   p95 {p95:6.1f} ms")
     print(f"  time to first frame    {first * 1000:6.0f} ms   (target 500 ms)")
     print(f"  peak memory            {peak:6.0f} MB   (target 150 MB)")
 

@@ -32,6 +32,7 @@ from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.signals import DhsimDriver, SignalGuard
+from dhsim_tui.terminal import ascii_key, install_ascii_scrollbars
 from dhsim_tui.typeahead import KeysInOrder
 
 
@@ -67,6 +68,10 @@ def _joint_count(text: str) -> int:
     return int(value)
 
 
+#: the themes --theme offers: Textual's, by short names
+THEMES = {"dark": "textual-dark", "light": "textual-light", "ansi": "ansi-dark"}
+
+
 class DhsimApp(KeysInOrder):
     """dhsim's terminal UI. Everything is reachable from the keyboard.
 
@@ -97,15 +102,25 @@ class DhsimApp(KeysInOrder):
         self,
         robot: Robot,
         path: Path | None = None,
-        renderer: str = "braille",
+        renderer: str = "plotext",
         start: str = "control",
         animate: bool = True,
         recovery: bool = False,
         stamp: FileStamp | None = None,
+        ascii: bool = False,
+        theme: str = "dark",
     ) -> None:
         """``stamp``: what ``path`` held when ``robot`` was read from it (read
-        now when not given); a save refuses to overwrite a file that changed."""
+        now when not given); a save refuses to overwrite a file that changed.
+        ``ascii``: draw only 7-bit ASCII (see terminal.py). ``theme``: one of
+        ``THEMES`` (``ansi``: the terminal's own 16-colour palette)."""
         super().__init__()
+        self.theme = THEMES[theme]
+        #: 7-bit ASCII only: widgets and screens read this (getattr(app, "ascii_mode", False))
+        self.ascii_mode = ascii
+        if ascii:
+            self.add_class("-ascii")  # the stylesheet's ASCII borders
+            install_ascii_scrollbars()
         self.animate = animate
         self.robot = robot
         self.robot_path = path
@@ -120,6 +135,11 @@ class DhsimApp(KeysInOrder):
         #: lines to print after the app has ended (where unsaved work was kept)
         self.exit_messages: list[str] = []
         self.sub_title = robot.name
+
+    def get_key_display(self, binding: Binding) -> str:
+        """The footer's name for a key; in ASCII mode ``^/v``, ``</>``, ``enter``."""
+        display = super().get_key_display(binding)
+        return ascii_key(display) if self.ascii_mode else display
 
     def get_driver_class(self) -> type[Driver]:
         driver = super().get_driver_class()
@@ -360,13 +380,17 @@ class DhsimApp(KeysInOrder):
 def run_app(
     robot: Robot,
     path: Path | None = None,
-    renderer: str = "braille",
+    renderer: str = "plotext",
     start: str = "control",
     stamp: FileStamp | None = None,
+    ascii: bool = False,
+    theme: str = "dark",
 ) -> int:
     """Run the TUI in this terminal; the exit status (1 after an unexpected error,
     128 + the signal's number after SIGHUP, SIGTERM or SIGQUIT)."""
-    app = DhsimApp(robot, path, renderer, start, recovery=True, stamp=stamp)
+    app = DhsimApp(
+        robot, path, renderer, start, recovery=True, stamp=stamp, ascii=ascii, theme=theme
+    )
     guard = SignalGuard(app, app.keep_unsaved_work)
     guard.install()
     try:

@@ -30,6 +30,7 @@ from dhsim_tui.core.orientation import oat_matrix
 from dhsim_tui.core.robotfile import load_with_stamp
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import check_joint_values, fmt
+from dhsim_tui.terminal import original_environ, wants_ascii
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 1
@@ -233,18 +234,36 @@ def _open(argument: str | None):
     return robot, path, stamp
 
 
+def ascii_screen(args: argparse.Namespace) -> bool:
+    """Whether the simulator draws in 7-bit ASCII: ``--ascii`` or ``--unicode``
+    if given, else the locale the process was started with and TERM.
+    In ASCII mode whatever is printed after the app ends is ASCII as well
+    (backslash escapes for what has no ASCII form)."""
+    ascii = wants_ascii(original_environ(), force=args.force_ascii)
+    if ascii:
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(AttributeError, ValueError, OSError):
+                stream.flush()
+                stream.reconfigure(encoding="ascii", errors="backslashreplace")  # type: ignore[union-attr]
+    return ascii
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     robot, path, stamp = _open(args.robot)  # a bad robot is reported before any UI starts
     from dhsim_tui.app import run_app  # textual loads only for the simulator
 
-    return run_app(robot, path, args.renderer, stamp=stamp)
+    return run_app(
+        robot, path, args.renderer, stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+    )
 
 
 def cmd_edit(args: argparse.Namespace) -> int:
     robot, path, stamp = _open(args.robot)
     from dhsim_tui.app import run_app
 
-    return run_app(robot, path, start="edit", stamp=stamp)
+    return run_app(
+        robot, path, start="edit", stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+    )
 
 
 def cmd_new(args: argparse.Namespace) -> int:
@@ -253,7 +272,34 @@ def cmd_new(args: argparse.Namespace) -> int:
     robot = new_robot(args.name.strip() or "new robot")  # checked before any UI starts
     from dhsim_tui.app import run_app
 
-    return run_app(robot, None, start="new")
+    return run_app(robot, None, start="new", ascii=ascii_screen(args), theme=args.theme)
+
+
+def _add_charset_options(parser: argparse.ArgumentParser) -> None:
+    """``--ascii`` / ``--unicode``: override what the locale and TERM say;
+    ``--theme``: the colours."""
+    parser.add_argument(
+        "--theme",
+        choices=("dark", "light", "ansi"),
+        default="dark",
+        help="colours: dark (default), light, or ansi (the terminal's own palette)",
+    )
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument(
+        "--ascii",
+        dest="force_ascii",
+        action="store_const",
+        const=True,
+        default=None,
+        help="draw only 7-bit ASCII (default when the locale is not UTF-8, or TERM=linux)",
+    )
+    group.add_argument(
+        "--unicode",
+        dest="force_ascii",
+        action="store_const",
+        const=False,
+        help="draw with Unicode box drawing and symbols whatever the locale says",
+    )
 
 
 def _subparsers() -> dict[str, _Parser]:
@@ -285,31 +331,40 @@ def _subparsers() -> dict[str, _Parser]:
     ik.set_defaults(func=cmd_ik)
     edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
     edit.add_argument("robot", help="a robot file or a bundled robot's name")
+    _add_charset_options(edit)
     edit.set_defaults(func=cmd_edit)
     new = _Parser(prog="dhsim new", description="Start a new robot in the table editor.")
     new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
+    _add_charset_options(new)
     new.set_defaults(func=cmd_new)
     return {"fk": fk, "ik": ik, "check": check, "list": listing, "edit": edit, "new": new}
 
 
 MAIN_HELP = """\
-usage: dhsim [ROBOT] [--renderer braille|plotext]
+usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
+             [--theme dark|light|ansi]
                                  open the simulator (default: the bundled Puma 560)
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
        dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--json]
        dhsim check ROBOT
        dhsim list
-       dhsim edit ROBOT            the table editor
-       dhsim new [NAME]            a new robot in the table editor
+       dhsim edit ROBOT [--ascii | --unicode]
+                                 the table editor
+       dhsim new [NAME] [--ascii | --unicode]
+                                 a new robot in the table editor
 
 ROBOT is a robot file (.toml) or a bundled robot's name, e.g. puma560.
+The simulator draws in 7-bit ASCII when the locale (LC_ALL, LC_CTYPE, LANG)
+is not UTF-8 or TERM=linux; --ascii and --unicode decide instead.
+--theme ansi uses the terminal's own colour palette.
 Run 'dhsim COMMAND --help' for a command's options."""
 
 
 def _main_parser() -> _Parser:
     parser = _Parser(prog="dhsim", add_help=False)
     parser.add_argument("robot", nargs="?", default=None)
-    parser.add_argument("--renderer", choices=("braille", "plotext"), default="braille")
+    parser.add_argument("--renderer", choices=("plotext", "braille"), default="plotext")
+    _add_charset_options(parser)
     parser.set_defaults(func=cmd_run)
     return parser
 

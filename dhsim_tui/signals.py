@@ -42,6 +42,8 @@ from collections.abc import Callable
 from textual.app import App
 from textual.drivers.linux_driver import LinuxDriver
 
+from dhsim_tui.terminal import ascii_text, to_ascii
+
 #: signals that end dhsim after keeping unsaved work
 EXIT_SIGNALS = (signal.SIGHUP, signal.SIGTERM, signal.SIGQUIT)
 #: what gives the terminal back: abort any half-written sequence (CAN), end a
@@ -66,9 +68,18 @@ TERMINAL_TIMEOUT = 0.5
 
 
 class DhsimDriver(LinuxDriver):
-    """Textual's Linux driver, with a SIGCONT that never starts a second input thread."""
+    """Textual's Linux driver, with a SIGCONT that never starts a second input
+    thread, and, for an app in ASCII mode, only 7-bit ASCII on the terminal."""
 
     _loop: asyncio.AbstractEventLoop | None = None
+
+    def write(self, data: str) -> None:
+        """In ASCII mode every character the app draws passes through
+        :func:`to_ascii` (same cell width): the guarantee that no byte >= 0x80
+        reaches the terminal, whatever a widget drew."""
+        if getattr(self._app, "ascii_mode", False):
+            data = to_ascii(data)
+        super().write(data)
 
     def start_application_mode(self) -> None:
         self._loop = asyncio.get_running_loop()
@@ -206,4 +217,7 @@ class SignalGuard:
                 with contextlib.suppress(termios.error, OSError):
                     termios.tcsetattr(fd, termios.TCSANOW, attrs)
         if self._messages:
-            _write_bounded(fd, ("\n".join(self._messages) + "\n").encode(), TERMINAL_TIMEOUT)
+            text = "\n".join(self._messages) + "\n"
+            if getattr(self._app, "ascii_mode", False):
+                text = ascii_text(text)
+            _write_bounded(fd, text.encode(), TERMINAL_TIMEOUT)

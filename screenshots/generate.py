@@ -10,8 +10,11 @@ cartesian`` redraws the simulator's shots and leaves the editor's alone).
 from __future__ import annotations
 
 import asyncio
+import os
 import sys
 from pathlib import Path
+
+from rich.color import ColorSystem
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
@@ -37,7 +40,20 @@ MOVE = (
     "right",
 )
 
+#: the view modes' shots: the same moved Puma in each way a terminal can ask for
+VIEW_MODES: dict[str, dict] = {
+    "views-120x36": {},
+    "views-16-colours-120x36": {"color_system": "standard"},
+    "views-256-colours-120x36": {"color_system": "256"},
+    "views-no-color-120x36": {"no_color": True},
+    "views-ascii-120x36": {"ascii": True},
+    "views-ansi-theme-120x36": {"theme": "ansi"},
+}
+
 SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
+    *[(name, "puma560", (120, 36), MOVE) for name in VIEW_MODES],
+    ("views-3d-maximised-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w")),
+    ("views-zoomed-120x36", "puma560", (120, 36), (*MOVE, "plus", "plus")),
     (
         "control-80x24",
         "puma560",
@@ -123,7 +139,16 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
 
 async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[str, ...]) -> None:
     robot, path = load_robot(robot_name)
-    app = DhsimApp(robot, path, animate=False)  # moves land at once: the same shot every time
+    mode = dict(VIEW_MODES.get(name, {}))
+    color_system = mode.pop("color_system", None)
+    if mode.pop("no_color", False):
+        os.environ["NO_COLOR"] = "1"  # Textual reads it when the app is made
+    app = DhsimApp(robot, path, animate=False, **mode)  # moves land at once: the same shot
+    os.environ.pop("NO_COLOR", None)
+    if color_system:  # as TERM=xterm (16 colours) or xterm-256color gets
+        app.console._color_system = (
+            ColorSystem.STANDARD if color_system == "standard" else (ColorSystem.EIGHT_BIT)
+        )
     async with app.run_test(size=size) as pilot:
         await pilot.press(*keys)
         screen = app.screen

@@ -65,6 +65,10 @@ class PtyScreen:
         columns, rows = size
         full_env = dict(os.environ)
         full_env.update({"TERM": "xterm-256color", "COLUMNS": str(columns), "LINES": str(rows)})
+        # a UTF-8 terminal unless the test says otherwise: CI may have no locale at all
+        for name in ("LC_ALL", "LC_CTYPE", "LANG"):
+            full_env.pop(name, None)
+        full_env["LANG"] = "C.UTF-8"
         full_env.pop("TEXTUAL_ALLOW_SIGNALS", None)
         full_env.update(env or {})
         self.screen = pyte.Screen(columns, rows)

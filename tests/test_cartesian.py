@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from dhsim_tui.app import DhsimApp
-from dhsim_tui.render.picture import ROLE_INDEX
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
 from dhsim_tui.core.ik import rotation_error
+from dhsim_tui.render.picture import ROLE_INDEX
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.widgets.pose_panel import PosePanel
 

@@ -70,3 +70,60 @@ def test_editor_rejected_value(snap_compare):
 
 def test_control_cartesian_mode(snap_compare):
     assert snap_compare(APP, press=("p", "p", "c", "down", "down"), terminal_size=(80, 24))
+
+
+# -- the views in every mode a terminal can ask for ---------------------------------
+
+
+def _puma(**kwargs):
+    from dhsim_tui.app import DhsimApp
+    from dhsim_tui.core import load_robot
+
+    robot, path = load_robot("puma560")
+    return DhsimApp(robot, path, animate=False, **kwargs)
+
+
+def test_views_120x36_four_views(snap_compare):
+    assert snap_compare(APP, press=MOVE, terminal_size=(120, 36))
+
+
+def test_views_3d_maximised_and_orbited(snap_compare):
+    assert snap_compare(APP, press=(*MOVE, "4", "z", "d", "w"), terminal_size=(120, 36))
+
+
+def test_views_zoomed(snap_compare):
+    assert snap_compare(APP, press=(*MOVE, "plus", "plus"), terminal_size=(120, 36))
+
+
+def test_views_16_colours(snap_compare):
+    from rich.color import ColorSystem
+
+    app = _puma()
+    app.console._color_system = ColorSystem.STANDARD  # as TERM=xterm gets
+    assert snap_compare(app, press=MOVE, terminal_size=(120, 36))
+
+
+def test_views_256_colours(snap_compare):
+    from rich.color import ColorSystem
+
+    app = _puma()
+    app.console._color_system = ColorSystem.EIGHT_BIT  # as TERM=xterm-256color gets
+    assert snap_compare(app, press=MOVE, terminal_size=(120, 36))
+
+
+def test_views_no_color(snap_compare, monkeypatch):
+    monkeypatch.setenv("NO_COLOR", "1")
+    assert snap_compare(_puma(), press=MOVE, terminal_size=(120, 36))
+
+
+def test_views_ansi_theme(snap_compare):
+    app = _puma()
+
+    async def ansi(pilot):
+        pilot.app.theme = "ansi-dark"
+
+    assert snap_compare(app, press=MOVE, run_before=ansi, terminal_size=(120, 36))
+
+
+def test_views_ascii(snap_compare):
+    assert snap_compare(_puma(ascii=True), press=MOVE, terminal_size=(120, 36))

@@ -10,9 +10,10 @@ cell (about 2 ms a view). In 7-bit ASCII plotext draws the lines itself, one
 ASCII marker per role (``x``, ``y``, ``z`` for the axes, ``#`` for links).
 
 Only plotext's documented figure methods are used, on a figure of our own:
-``plotext._figure._figure_class`` is the one private name (the class behind
-``plotext.plot``; textual-plotext uses it too), so plotext is pinned exactly
-and ``tests/test_render.py`` fails if it changes. No NaN or inf ever reaches
+``plotext._figure._figure_class`` (the class behind ``plotext.plot``;
+textual-plotext uses it too) and its ``_limit_size`` (what ``plotext.limit_size``
+does for the global figure) are the private names, so plotext is pinned
+exactly and ``tests/test_render.py`` fails if they change. No NaN or inf ever reaches
 plotext: pen lifts become ``None`` (plotext 5's own gap marker) and every
 number is checked finite.
 """
@@ -54,7 +55,7 @@ _MARK_ROLE = {mark: ROLE_INDEX[role] for role, mark in ASCII_MARKS.items()}
 _ASCII_FRAME = str.maketrans("─│┤┬└┼┌┐┘├┴", "-|+++++++++")
 _SGR = re.compile(r"\x1b\[[0-9;]*m")
 #: the smallest picture that still gets axes (columns, rows)
-MIN_SIZE = (16, 6)
+MIN_SIZE = (30, 8)
 _AXES = ROLE_INDEX["axes"]
 
 
@@ -93,11 +94,18 @@ def _clip(xs: np.ndarray, ys: np.ndarray, xlim, ylim) -> tuple[list, list]:
     out_x: list[float | None] = []
     out_y: list[float | None] = []
     for x0, y0, x1, y1 in zip(xs[:-1], ys[:-1], xs[1:], ys[1:], strict=True):
-        if not (math.isfinite(x0) and math.isfinite(y0) and math.isfinite(x1) and math.isfinite(y1)):
+        if not (
+            math.isfinite(x0) and math.isfinite(y0) and math.isfinite(x1) and math.isfinite(y1)
+        ):
             continue
         t0, t1 = 0.0, 1.0
         dx, dy = x1 - x0, y1 - y0
-        for p, q in ((-dx, x0 - xlim[0]), (dx, xlim[1] - x0), (-dy, y0 - ylim[0]), (dy, ylim[1] - y0)):
+        for p, q in (
+            (-dx, x0 - xlim[0]),
+            (dx, xlim[1] - x0),
+            (-dy, y0 - ylim[0]),
+            (dy, ylim[1] - y0),
+        ):
             if p == 0:
                 if q < 0:
                     t0, t1 = 1.0, 0.0
@@ -131,6 +139,9 @@ class PlotextPainter:
     def __init__(self) -> None:
         self.figure = _figure_class()
         self.figure.theme("clear")  # no colours: roles are styled by the widget
+        # plotext caps a figure at the size of the terminal it sees (80x24
+        # when headless); the view's size is the widget's, not the terminal's
+        self.figure._limit_size(False, False)
         self.builds = 0  # how many times plotext built a picture (tests)
         self._frame_key: tuple | None = None
         self._frame: tuple[list[str], np.ndarray] | None = None

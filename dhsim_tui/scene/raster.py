@@ -99,9 +99,9 @@ def rasterize(
     colours = colour_of_line[top].reshape(rows, cols).astype(np.int16)
     chars = np.where(bits > 0, bits + 0x2800, 0x20)
     lines = ["".join(map(chr, row)) for row in chars.tolist()]
-    ex, ey = scene.end_effector
-    mx, my = round((ex - xlim[0]) * sx) // 2, round((ylim[1] - ey) * sy) // 4
-    if 0 <= mx < cols and 0 <= my < rows:
+    ex, ey = (scene.end_effector[0] - xlim[0]) * sx, (ylim[1] - scene.end_effector[1]) * sy
+    if np.isfinite(ex) and np.isfinite(ey) and 0 <= round(ex) < nx and 0 <= round(ey) < ny:
+        mx, my = round(ex) // 2, round(ey) // 4
         lines[my] = lines[my][:mx] + MARKER_CHAR + lines[my][mx + 1 :]
         colours[my, mx] = len(palette) - 1
     return Raster(tuple(lines), colours, palette, xlim, ylim)

@@ -51,6 +51,7 @@ from dhsim_tui.screens.control_keys import (
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
+from dhsim_tui.terminal import shown
 from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.cartesian_panel import TITLE as CARTESIAN_TITLE
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
@@ -121,7 +122,9 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
             with Vertical(id="side-panel"):
                 panel = JointPanel(id="joints")
                 # file content: control characters escaped, never markup
-                panel.border_title = Text(printable(f"{robot.name} · {robot.type_string}"))
+                panel.border_title = Text(
+                    shown(printable(f"{robot.name} · {robot.type_string}"), self.app)
+                )
                 with panel:
                     for i, (joint, value) in enumerate(
                         zip(robot.joints, self.q, strict=True), start=1
@@ -161,8 +164,11 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         self.set_class(height < TALL_FOR_BOTH, "-short")
         if too_small:
             self.query_one("#too-small", Static).update(
-                f"Terminal too small: {width}×{height}.\n"
-                f"dhsim needs at least {MIN_SIZE[0]}×{MIN_SIZE[1]}. q quits."
+                shown(
+                    f"Terminal too small: {width}×{height}.\n"
+                    f"dhsim needs at least {MIN_SIZE[0]}×{MIN_SIZE[1]}. q quits.",
+                    self.app,
+                )
             )
 
     # -- the one-way flow: q -> core -> scene -> widgets -----------------------
@@ -271,7 +277,7 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         """Under the panels, wrapped to show all of it: what just happened, or
         why nothing did. It may quote file content: control characters are
         shown escaped, and it is never read as markup."""
-        message = printable(message)
+        message = shown(printable(message), self.app)
         if (message, error) == self._said:
             return
         self._said = (message, error)

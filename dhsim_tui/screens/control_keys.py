@@ -62,7 +62,7 @@ VIEW_BINDINGS = [
     Binding("1", "view(0)", "Top", show=False, id="view.top", tooltip="Top view"),
     Binding("2", "view(1)", "Front", show=False, id="view.front", tooltip="Front view"),
     Binding("3", "view(2)", "Side", show=False, id="view.side", tooltip="Side view"),
-    Binding("4", "view(3)", "3-D", show=False, id="view.iso", tooltip="3-D view (a d w s orbit it)"),
+    Binding("4", "view(3)", "3-D", show=False, id="view.iso", tooltip="3-D view (a d w s: orbit)"),
     Binding("z", "maximise", "Maximise", show=False, id="view.maximise",
             tooltip="The selected view over the whole screen; again: back"),
     Binding("plus,equals_sign", "zoom(1)", "Zoom in", show=False, id="view.zoom_in",

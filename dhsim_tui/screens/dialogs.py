@@ -18,6 +18,7 @@ from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
 from dhsim_tui.core.text import printable
+from dhsim_tui.terminal import ascii_mode, shown
 
 DIALOG_CSS = """
     {name} {{ align: center middle; }}
@@ -36,14 +37,16 @@ PATH_LIMIT = 110
 
 def short_path(path: object, limit: int = PATH_LIMIT) -> str:
     """``path`` as text, escaped, and at most ``limit`` characters: the start
-    and the end (the file's name) stay, the middle becomes ``…``."""
+    and the end (the file's name) stay, the middle becomes ``…`` (``...`` when
+    the running app is in ASCII mode)."""
     text = printable(str(path))
     if len(text) <= limit:
         return text
     limit = max(limit, 8)
+    mark = "..." if ascii_mode() else "…"
     tail = max(limit * 2 // 3, limit - 1 - limit // 3)
-    head = limit - 1 - tail
-    return f"{text[:head]}…{text[-tail:]}"
+    head = max(0, limit - len(mark) - tail)
+    return f"{text[:head]}{mark}{text[-tail:]}"
 
 
 def reason_of(error: BaseException, path: object) -> str:
@@ -72,9 +75,9 @@ class Confirm(ModalScreen[bool]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = escape(printable(self._title))
-            yield Label(Text(printable(self._question)))
-            yield Label("y yes · n no", classes="hint")
+            box.border_title = escape(shown(printable(self._title)))
+            yield Label(Text(shown(printable(self._question))))
+            yield Label(shown("y yes · n no"), classes="hint")
 
     def action_answer(self, yes: bool) -> None:
         self.dismiss(yes)
@@ -98,12 +101,13 @@ class Choice(ModalScreen[str | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
-            box.border_title = escape(printable(self._title))
+            box.border_title = escape(shown(printable(self._title)))
             options = OptionList(
-                *(Option(Text(printable(text)), id=value) for value, text in self._choices)
+                *(Option(Text(shown(printable(text))), id=value) for value, text in self._choices)
             )
             yield options
-            yield Label(self._hint or "↑↓ choose · enter picks · escape cancels", classes="hint")
+            hint = self._hint or "↑↓ choose · enter picks · escape cancels"
+            yield Label(shown(hint), classes="hint")
 
     def on_mount(self) -> None:
         options = self.query_one(OptionList)
@@ -147,8 +151,10 @@ class SaveGuard(ModalScreen[str]):
         with Vertical() as box:
             box.border_title = "Unsaved changes"
             name = printable(self._name)
-            yield Label(Text(f"{name} has changes that are not saved. Save before {self._doing}?"))
-            yield Label("s save · d discard · escape stay", classes="hint")
+            yield Label(
+                Text(shown(f"{name} has changes that are not saved. Save before {self._doing}?"))
+            )
+            yield Label(shown("s save · d discard · escape stay"), classes="hint")
 
     def action_answer(self, answer: str) -> None:
         self.dismiss(answer)
@@ -194,11 +200,13 @@ class FileChanged(ModalScreen[str]):
             why = f" ({printable(self._why)})" if self._why else ""
             yield Label(
                 Text(
-                    f"{short_path(self._path)} changed on disk since you opened it{why}. "
-                    "Overwrite it, reload it (lose your changes), or cancel?"
+                    shown(
+                        f"{short_path(self._path)} changed on disk since you opened it{why}. "
+                        "Overwrite it, reload it (lose your changes), or cancel?"
+                    )
                 )
             )
-            yield Label("o overwrite · r reload · c cancel", classes="hint")
+            yield Label(shown("o overwrite · r reload · c cancel"), classes="hint")
 
     def action_answer(self, answer: str) -> None:
         self.dismiss(answer)
@@ -235,12 +243,14 @@ class ReadOnly(ModalScreen[bool]):
             box.border_title = "Not saved"
             yield Label(
                 Text(
-                    f"not saved: {printable(self._reason)} — {short_path(self._path)}. "
-                    "Nothing was changed on disk and your edits are kept. "
-                    "Save as another file?"
+                    shown(
+                        f"not saved: {printable(self._reason)} — {short_path(self._path)}. "
+                        "Nothing was changed on disk and your edits are kept. "
+                        "Save as another file?"
+                    )
                 )
             )
-            yield Label("a save as · c cancel", classes="hint")
+            yield Label(shown("a save as · c cancel"), classes="hint")
 
     def action_answer(self, save_as: bool) -> None:
         self.dismiss(save_as)

@@ -46,6 +46,7 @@ from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import OpenRobot
 from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import is_bundled, save_flow
+from dhsim_tui.terminal import ascii_mode, shown
 from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
@@ -66,7 +67,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self,
         robot: Robot,
         path: Path | None,
-        renderer: str = "braille",
+        renderer: str = "plotext",
         saved: Robot | None = None,
         stamp: FileStamp | None = None,
     ) -> None:
@@ -152,7 +153,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         if self._cursor_row is not None:
             self._joints.move_cursor(row=min(self._cursor_row, robot.dof - 1))
             self._cursor_row = None
-        mark = " ●" if self.dirty else ""
+        mark = (" *" if ascii_mode(self.app) else " ●") if self.dirty else ""
         if self.path is not None:
             where = short_path(self.path, 40)
         elif self.template is not None:
@@ -160,9 +161,10 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         else:
             where = "not saved yet"
         name = printable(robot.name)
-        self._joints.border_title = escape(f"{name}{mark} · {robot.type_string} · {where}")
+        title = f"{name}{mark} · {robot.type_string} · {where}"
+        self._joints.border_title = escape(shown(title, self.app))
         self._fields.show(("field", "value"), field_rows(robot))
-        self._fields.border_title = "Robot · poses (a adds, d deletes)"
+        self._fields.border_title = shown("Robot · poses (a adds, d deletes)", self.app)
         self.app.sub_title = f"{name}{mark}"
         frames = robot.kinematics.frames(robot.home)
         self._preview.show(build_wireframe(robot, frames))
@@ -180,7 +182,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         status = self.query_one("#editor-status", Static)
         if status.has_class("-error") != error:
             status.set_class(error, "-error")
-        status.update(Text(printable(message)))  # user text: escaped, never markup
+        status.update(Text(shown(printable(message), self.app)))  # user text: escaped, never markup
 
     def _apply(self, robot: Robot, message: str, cursor_row: int | None = None) -> None:
         if self.history.push(robot):

@@ -78,6 +78,7 @@ EDITOR_BINDINGS = [
     Binding("1", "preview(0)", "Top", show=False, id="preview.top", tooltip="Top view"),
     Binding("2", "preview(1)", "Front", show=False, id="preview.front", tooltip="Front view"),
     Binding("3", "preview(2)", "Side", show=False, id="preview.side", tooltip="Side view"),
+    Binding("4", "preview(3)", "3-D", show=False, id="preview.iso", tooltip="3-D view"),
     Binding(
         "q",
         "explain_quit",
@@ -100,7 +101,7 @@ EDITOR_HELP_ROWS = [
     ("ctrl+s", "save (atomic; asks if the file changed on disk since it was opened)"),
     ("S", "save as another file, robots/<name>.toml"),
     ("tab", "joints table <-> robot fields and poses"),
-    ("1 2 3", "preview: top, front, side"),
+    ("1 2 3 4", "preview: top, front, side, 3-D"),
     ("escape", "back to the simulator (asks about unsaved changes)"),
     ("ctrl+q", "quit dhsim (asks about unsaved changes)"),
 ]

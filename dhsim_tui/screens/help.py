@@ -12,6 +12,7 @@ from textual.screen import ModalScreen
 from textual.widgets import Static
 
 from dhsim_tui.core.text import printable
+from dhsim_tui.terminal import shown
 
 
 class HelpScreen(ModalScreen[None]):
@@ -44,14 +45,14 @@ class HelpScreen(ModalScreen[None]):
         table = Table.grid(padding=(0, 2))
         table.add_column(style="bold")
         table.add_column()
-        for keys, text in self._rows:
-            table.add_row(Text(printable(keys)), Text(printable(text)))  # pose names: escaped
+        for keys, text in self._rows:  # pose names: escaped; ASCII in ASCII mode
+            table.add_row(Text(shown(printable(keys))), Text(shown(printable(text))))
         with VerticalScroll() as box:
-            box.border_title = escape(printable(self._title))
+            box.border_title = escape(shown(printable(self._title)))
             box.border_subtitle = "escape closes"
             yield Static(table)
-            if self._notes:
-                yield Static(Text(self._notes), classes="notes")  # written here, not read
+            if self._notes:  # written here, not read
+                yield Static(Text(shown(self._notes)), classes="notes")
 
     def action_close(self) -> None:
         self.dismiss(None)

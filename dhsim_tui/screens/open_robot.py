@@ -25,6 +25,7 @@ from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import FileStamp, load, load_with_stamp
 from dhsim_tui.core.text import printable
 from dhsim_tui.screens.dialogs import reason_of, short_path
+from dhsim_tui.terminal import shown
 
 ROBOTS_DIR = Path("robots")
 
@@ -93,18 +94,19 @@ class OpenRobot(ModalScreen[tuple[Robot, Path, FileStamp] | None]):
             box.border_title = "Open a robot"
             yield OptionList(
                 *(
-                    Option(Text(f"{short_path(path, 60)}  {summary(path)}"), id=str(i))
+                    Option(Text(shown(f"{short_path(path, 60)}  {summary(path)}")), id=str(i))
                     for i, path in enumerate(self._files)
                 )
             )
             yield Input(placeholder="or type a path to a .toml file, then enter", id="path")
-            yield Label(Text("\n".join(notes)), id="error")
+            yield Label(Text(shown("\n".join(notes))), id="error")
             yield Label(
-                "↑↓ choose · enter opens · tab to the path · escape cancels", classes="hint"
+                shown("↑↓ choose · enter opens · tab to the path · escape cancels"),
+                classes="hint",
             )
 
     def _say(self, message: str) -> None:
-        self.query_one("#error", Label).update(Text(printable(message)))
+        self.query_one("#error", Label).update(Text(shown(printable(message))))
 
     def _open(self, path: Path) -> None:
         try:

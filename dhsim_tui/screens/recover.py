@@ -17,6 +17,7 @@ from dhsim_tui.core.model import Robot
 from dhsim_tui.core.recovery import Recovery, discard_recovery, find_recovery
 from dhsim_tui.core.text import printable
 from dhsim_tui.screens.dialogs import Choice
+from dhsim_tui.terminal import shown
 
 RESTORE_CHOICES = [
     ("restore", "restore them (in the editor, not saved yet)"),
@@ -30,7 +31,7 @@ def _discard(app: App, found: Recovery) -> bool:
         discard_recovery(found)
     except OSError as exc:
         app.notify(
-            printable(f"could not delete {found.file}: {exc.strerror or exc}"),
+            shown(printable(f"could not delete {found.file}: {exc.strerror or exc}"), app),
             title="recovery file kept",
             severity="warning",
             markup=False,
@@ -48,7 +49,10 @@ async def offer_recovery(app: App, source: Path | None, current: Robot | None) -
         found = find_recovery(source)
     except DhsimError as exc:
         app.notify(
-            printable(str(exc)), title="recovery file not used", severity="warning", markup=False
+            shown(printable(str(exc)), app),
+            title="recovery file not used",
+            severity="warning",
+            markup=False,
         )
         return None
     if found is None:
@@ -73,5 +77,6 @@ async def offer_recovery(app: App, source: Path | None, current: Robot | None) -
         _discard(app, found)
         return found
     if answer == "discard" and _discard(app, found):
-        app.notify(printable(f"discarded the unsaved changes to {found.robot.name}"), markup=False)
+        message = printable(f"discarded the unsaved changes to {found.robot.name}")
+        app.notify(shown(message, app), markup=False)
     return None

@@ -32,6 +32,7 @@ from dhsim_tui.core.robotfile import (
 from dhsim_tui.screens.dialogs import Confirm, FileChanged, ReadOnly, reason_of, short_path
 from dhsim_tui.screens.open_robot import ROBOTS_DIR
 from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.terminal import shown
 
 #: how a flow tells the user something: (message, is_error)
 Report = Callable[[str, bool], None]
@@ -90,6 +91,7 @@ async def save_flow(
     so the comments of the file the robot came from are kept."""
 
     def tell(message: str, error: bool = False) -> None:
+        message = shown(message, app)
         if report is not None:
             report(message, error)
         else:

@@ -16,6 +16,7 @@ from textual.widgets import Input, Label
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.text import printable
+from dhsim_tui.terminal import shown
 
 #: the Input's own keys (ctrl+u, backspace, enter...) and what they do
 _INPUT_ACTIONS = {binding.key: binding.action for binding in Binding.make_bindings(Input.BINDINGS)}
@@ -95,14 +96,14 @@ class ValueEntry(ModalScreen[Any]):
         self.set_focus(self._input, scroll_visible=False)
 
     def compose(self) -> ComposeResult:
-        title = printable(self._title)
+        title = shown(printable(self._title))
         with Vertical() as box:
             if len(title) <= TITLE_LIMIT:
                 box.border_title = escape(title)
             else:  # too long for the border: shown whole, wrapped, above the input
                 yield Label(Text(title), id="title")
             yield self._input
-            yield Label(Text(printable(self._hint)), id="hint")
+            yield Label(Text(shown(printable(self._hint))), id="hint")
             yield Label("", id="error")
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
@@ -110,7 +111,8 @@ class ValueEntry(ModalScreen[Any]):
         try:
             value = self._check(event.value)
         except DhsimError as exc:
-            self.query_one("#error", Label).update(Text(printable(str(exc))))  # echoes user text
+            error = shown(printable(str(exc)))  # echoes user text
+            self.query_one("#error", Label).update(Text(error))
             return
         self.dismiss(value)
 

@@ -85,7 +85,7 @@ def role_styles(color_system: str | None, *, ansi_theme: bool = False, mono: boo
             Style(bold=True, reverse=True)
             if role == "tool"
             else Style(bold=True)
-            if role in ("link", "floor_hit")
+            if role == "floor_hit"
             else Style(dim=True)
             if role in ("grid", "axes")
             else Style()

@@ -9,15 +9,18 @@ the seed's work area by default; ``zoom`` narrows it about the arm.
 from __future__ import annotations
 
 import numpy as np
+from rich.style import Style
+from rich.text import Text
 from textual.app import ComposeResult
 from textual.containers import Container
 from textual.widgets import Static
 
-from dhsim_tui.render.picture import Framing
+from dhsim_tui.render.picture import CELL_ROLES, Framing
 from dhsim_tui.scene import VIEWS, Wireframe, project
 from dhsim_tui.scene.oblique import Orbit, camera, project_oblique
 from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene, per_dot_needed
 from dhsim_tui.widgets.arm_view import ArmView
+from dhsim_tui.widgets.view_style import role_styles
 
 #: at and above this size a screen shows all four views at once
 WIDE_SIZE = (120, 36)
@@ -32,15 +35,26 @@ def is_wide(width: int, height: int) -> bool:
     return width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1]
 
 
-def legend(ascii: bool, mono: bool) -> str:
-    """One line, never wrapped: what each mark means."""
+def legend(ascii: bool, mono: bool, styles: dict[str, Style]) -> Text:
+    """One line, never wrapped: what each mark means, in the views' own styles."""
     if ascii:
-        return "axes x y z   @ tool   # links   : pedestal   _ floor"
+        return Text("axes x y z   @ tool   # links   : pedestal   _ floor")
     if mono:
-        return "axes: letters x y z at their tips   ◆ tool   ━ links   ┄ floor"
-    return (
-        "[b]axes[/] [#ff4f4f]━[/] x  [#33cc33]━[/] y  [#4f86ff]━[/] z   "
-        "[#ff55ff]◆[/] tool   ━ links   [#c8a000]━[/] pedestal   [#8a8a8a]┄[/] floor"
+        return Text("axes: letters x y z at their tips   ◆ tool   ━ links   ┄ floor")
+    return Text.assemble(
+        ("axes ", "bold"),
+        ("━", styles["x"]),
+        " x  ",
+        ("━", styles["y"]),
+        " y  ",
+        ("━", styles["z"]),
+        " z   ",
+        ("◆", styles["tool"]),
+        " tool   ━ links   ",
+        ("━", styles["pedestal"]),
+        " pedestal   ",
+        ("┄", styles["floor"]),
+        " floor",
     )
 
 
@@ -65,14 +79,26 @@ class ViewsPanel(Container):
         with Container(classes="views-grid"):
             for view in VIEWS:
                 yield ArmView(view, self.renderer, id=f"view-{view.key}")
-        yield Static("", classes="legend", markup=True)
+        yield Static("", classes="legend")
 
     def on_mount(self) -> None:
         self._views = list(self.query(ArmView))
+        self._show_legend()
+        self.select(self.selected)
+        self.watch(self.app, "theme", self._restyle, init=False)
+
+    def _show_legend(self) -> None:
         app = self.app
         mono = bool(app.no_color) or app.console.color_system is None
-        self.query_one(".legend", Static).update(legend(getattr(app, "ascii_mode", False), mono))
-        self.select(self.selected)
+        styles = role_styles(app.console.color_system, ansi_theme=app.current_theme.ansi)
+        text = legend(self._ascii, mono, dict(zip(CELL_ROLES, styles, strict=True)))
+        self.query_one(".legend", Static).update(text)
+
+    def _restyle(self) -> None:
+        """A new theme: the views and legend take its colours (ANSI or not)."""
+        self._show_legend()
+        for widget in self._views:
+            widget.restyle()
 
     @property
     def views(self) -> list[ArmView]:
