@@ -12,6 +12,7 @@ from textual.binding import Binding
 from textual.driver import Driver
 from textual.drivers.linux_driver import LinuxDriver
 
+from dhsim_tui import partial_update
 from dhsim_tui.core import editing
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
@@ -67,6 +68,8 @@ def _joint_count(text: str) -> int:
         raise editing.DhsimError(f"joints: a whole number from 1 to {MAX_JOINTS}")
     return int(value)
 
+
+partial_update.install()  # a changed span is written from where it starts
 
 #: the themes --theme offers: Textual's, by short names
 THEMES = {"dark": "textual-dark", "light": "textual-light", "ansi": "ansi-dark"}

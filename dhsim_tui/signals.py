@@ -42,6 +42,7 @@ from collections.abc import Callable
 from textual.app import App
 from textual.drivers.linux_driver import LinuxDriver
 
+from dhsim_tui.sgr import compact
 from dhsim_tui.terminal import ascii_text, to_ascii
 
 #: signals that end dhsim after keeping unsaved work
@@ -76,10 +77,11 @@ class DhsimDriver(LinuxDriver):
     def write(self, data: str) -> None:
         """In ASCII mode every character the app draws passes through
         :func:`to_ascii` (same cell width): the guarantee that no byte >= 0x80
-        reaches the terminal, whatever a widget drew."""
+        reaches the terminal, whatever a widget drew. Then :func:`compact`
+        drops the colour codes that change nothing (fewer bytes a key)."""
         if getattr(self._app, "ascii_mode", False):
             data = to_ascii(data)
-        super().write(data)
+        super().write(compact(data))
 
     def start_application_mode(self) -> None:
         self._loop = asyncio.get_running_loop()

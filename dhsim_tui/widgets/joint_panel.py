@@ -1,24 +1,47 @@
-"""The joints panel: one row per joint with its value and a slider bar in text."""
+"""The joints panel: one row per joint with its value and a slider bar in text.
+
+Few bytes per key press (issue 9): a row is built as a handful of styled
+runs (label, the bar up to the value, the value marker, the rest of the bar,
+the value), never one span per glyph; Textual writes each span as its own
+colour code and reset. A step repaints only its own row, and only up to the
+last column that changed.
+"""
 
 from __future__ import annotations
 
+from rich.cells import cell_len
 from rich.text import Text
 from textual.containers import VerticalScroll
+from textual.geometry import Region
 from textual.widgets import Static
 
 from dhsim_tui.core.model import LENGTH_DECIMALS, Joint
 
+#: the bar's glyphs: ends, track, home, value, value on its min / max limit
+BAR_UNICODE = ("├", "┤", "─", "┊", "●", "◀", "▶")
+BAR_ASCII = ("|", "|", "-", ":", "#", "<", ">")
 
-def format_value(joint: Joint, value: float, units: str) -> str:
+
+def ascii_mode(widget: Static) -> bool:
+    """Whether the app draws in 7-bit ASCII (``app.ascii_mode``, set by the app)."""
+    try:
+        return bool(getattr(widget.app, "ascii_mode", False))
+    except Exception:  # no app yet (a widget made outside one)
+        return False
+
+
+def format_value(joint: Joint, value: float, units: str, ascii: bool = False) -> str:
     """A joint value with its unit, fixed decimals so it doesn't jitter."""
     if joint.is_revolute:
-        return f"{round(value, 2) + 0.0:9.2f}°  "
+        return f"{round(value, 2) + 0.0:9.2f}" + ("deg" if ascii else "°  ")
     decimals = LENGTH_DECIMALS[units]
     return f"{round(value, decimals) + 0.0:9.{decimals}f} {units:<2}"
 
 
-def slider(joint: Joint, value: float, width: int) -> Text:
-    """``├───┊──●────┤``: the range, home (┊) and value (●); ◀/▶ on a limit."""
+def slider(joint: Joint, value: float, width: int, ascii: bool = False) -> Text:
+    """``├───┊──●────┤``: the range, home (┊) and value (●); ◀/▶ on a limit.
+    In ASCII ``|---:--#----|`` and ``<``/``>``. One span per run of equal style."""
+    left, right, track, home_glyph, dot, at_min, at_max = BAR_ASCII if ascii else BAR_UNICODE
     width = max(width, 5)
     inner = width - 2
     span = joint.max - joint.min
@@ -26,26 +49,40 @@ def slider(joint: Joint, value: float, width: int) -> Text:
     def cell(v: float) -> int:
         return min(inner - 1, max(0, round((v - joint.min) / span * (inner - 1))))
 
-    chars = ["─"] * inner
-    styles = ["dim"] * inner
-    home = cell(joint.home)
-    chars[home], styles[home] = "┊", "dim"
+    chars = [track] * inner
+    chars[cell(joint.home)] = home_glyph
     at = cell(value)
     if value <= joint.min:
-        chars[at], styles[at] = "◀", "bold red"
+        chars[at], marker_style = at_min, "bold red"
     elif value >= joint.max:
-        chars[at], styles[at] = "▶", "bold red"
+        chars[at], marker_style = at_max, "bold red"
     else:
-        chars[at], styles[at] = "●", "bold"
-    text = Text("├", style="dim")
-    for ch, style in zip(chars, styles, strict=True):
-        text.append(ch, style=style)
-    text.append("┤", style="dim")
+        chars[at], marker_style = dot, "bold"
+    text = Text()
+    text.append(left + "".join(chars[:at]), style="dim")
+    text.append(chars[at], style=marker_style)
+    text.append("".join(chars[at + 1 :]) + right, style="dim")
     return text
 
 
+def changed_extent(old: Text | None, new: Text) -> int | None:
+    """How many leading cells of a one-line ``new`` must be repainted to turn
+    ``old`` into it: up to the last character that differs (text or style);
+    None when nothing changed."""
+    if old is None:
+        return cell_len(new.plain)
+    a, b = old.plain, new.plain
+    if old.spans != new.spans or len(a) != len(b):
+        return max(cell_len(a), cell_len(b))
+    if a == b:
+        return None
+    last = max(i for i, (x, y) in enumerate(zip(a, b, strict=True)) if x != y)
+    return max(cell_len(a[: last + 1]), cell_len(b[: last + 1]))
+
+
 class JointRow(Static):
-    """One joint: label, bar, value. Repaints only when its own value changes."""
+    """One joint: label, bar, value. Repaints only when its own value changes,
+    and then only the columns up to the last one that changed."""
 
     DEFAULT_CSS = """
     JointRow { height: 1; }
@@ -58,21 +95,39 @@ class JointRow(Static):
         self.joint = joint
         self.units = units
         self.value = value
+        self._shown: tuple[tuple[int, bool, bool], Text] | None = None
 
     def set_value(self, value: float) -> None:
-        if value != self.value:
-            self.value = value
+        if value == self.value:
+            return
+        self.value = value
+        before = self._shown
+        if before is None or not self.is_mounted:
             self.refresh()
+            return
+        key, old = before
+        new = self.render()
+        if key != self._key():
+            self.refresh()
+            return
+        extent = changed_extent(old, new)
+        if extent is not None:
+            self.refresh(Region(0, 0, min(extent, self.size.width), 1))
+
+    def _key(self) -> tuple[int, bool, bool]:
+        return (self.size.width, self.has_class("-selected"), ascii_mode(self))
 
     def render(self) -> Text:
+        ascii = ascii_mode(self)
         label = self.joint.label(self.number)
-        value_text = format_value(self.joint, self.value, self.units)
+        value_text = format_value(self.joint, self.value, self.units, ascii)
         bar_width = self.size.width - len(value_text) - 8
         at_limit = not self.joint.min < self.value < self.joint.max
-        marker = "▶" if self.has_class("-selected") else " "
+        marker = (">" if ascii else "▶") if self.has_class("-selected") else " "
         text = Text(f"{marker} {label:<4} ")
-        text.append_text(slider(self.joint, self.value, bar_width))
+        text.append_text(slider(self.joint, self.value, bar_width, ascii))
         text.append(value_text, style="bold red" if at_limit else "")
+        self._shown = (self._key(), text)
         return text
 
 
@@ -89,13 +144,11 @@ class JointPanel(VerticalScroll, can_focus=False):
         return self._rows
 
     def select(self, index: int) -> None:
+        """Mark the selected row (a changed class repaints that row only)."""
         for i, row in enumerate(self.rows()):
             row.set_class(i == index, "-selected")
             if i == index:
-                row.refresh()
                 self.scroll_to_widget(row, animate=False)
-            else:
-                row.refresh()
 
     def show(self, q: tuple[float, ...]) -> None:
         for row, value in zip(self.rows(), q, strict=True):
