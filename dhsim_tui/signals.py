@@ -86,6 +86,24 @@ class DhsimDriver(LinuxDriver):
     def start_application_mode(self) -> None:
         self._loop = asyncio.get_running_loop()
         super().start_application_mode()
+        # Textual sets SIGCONT's handler with signal.signal. A signal the kernel
+        # hands to one of Textual's threads then runs its Python handler only
+        # when the main thread next wakes, and an idle app sleeps in epoll with
+        # nothing to wake it: a continued dhsim sometimes never repainted.
+        # Through asyncio, the loop's wakeup fd wakes it at once, for every
+        # signal handled in Python (hang-up and terminate included).
+        with contextlib.suppress(RuntimeError, ValueError, NotImplementedError):
+            self._loop.add_signal_handler(signal.SIGCONT, self._sigcont_application)
+
+    def stop_application_mode(self) -> None:
+        loop = self._loop
+        if loop is not None and not loop.is_closed():
+            with contextlib.suppress(RuntimeError, ValueError, NotImplementedError):
+                loop.remove_signal_handler(signal.SIGCONT)
+        # back to Textual's own handler: a suspended app (SIGTSTP) resumes by it
+        with contextlib.suppress(ValueError):
+            signal.signal(signal.SIGCONT, self._sigcont_application)
+        super().stop_application_mode()
 
     def _input_running(self) -> bool:
         return self._key_thread is not None and self._key_thread.is_alive()
