@@ -409,7 +409,7 @@ def test_subprocess_bad_inputs_exit_2_without_traceback(tmp_path):
         assert "Traceback" not in err
 
 
-UI_LIBRARIES = ("textual", "textual_plotext", "plotext", "rich")
+UI_LIBRARIES = ("textual", "plotext", "rich")
 
 
 def test_scripting_commands_do_not_import_ui_libraries():

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "dhsim_tui"
-UI_LIBRARIES = ("textual", "textual_plotext", "plotext", "rich")
+UI_LIBRARIES = ("textual", "plotext", "rich")
 
 
 def _loaded_after(code: str) -> set[str]:

@@ -11,12 +11,11 @@ repaints only the rows that changed, each up to its last changed column.
 from __future__ import annotations
 
 from rich.text import Text
-from textual.widget import Widget
 
 from dhsim_tui.core.jog import CARTESIAN_ROWS
 from dhsim_tui.core.model import LENGTH_DECIMALS
 from dhsim_tui.widgets.joint_panel import ascii_mode
-from dhsim_tui.widgets.pose_panel import refresh_changed_lines
+from dhsim_tui.widgets.pose_panel import TextPanel, refresh_changed_lines
 
 TITLE = "Cartesian: move the tool"
 #: what each turn row turns about, and the angle shown on it
@@ -51,23 +50,10 @@ def cartesian_text(
     return text
 
 
-class CartesianPanel(Widget):
+class CartesianPanel(TextPanel):
     """Shows what the screen hands it: the tool's pose and the selected row."""
 
     DEFAULT_CSS = "CartesianPanel { height: 8; }"
-
-    def __init__(
-        self,
-        *children: Widget,
-        name: str | None = None,
-        id: str | None = None,
-        classes: str | None = None,
-    ) -> None:
-        super().__init__(*children, name=name, id=id, classes=classes)
-        self._text = Text()
-
-    def render(self) -> Text:
-        return self._text
 
     def show(
         self,

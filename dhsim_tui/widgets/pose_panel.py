@@ -56,12 +56,8 @@ def pose_text(pose: EndEffector, readout: str, units: str, ascii: bool = False) 
     return text
 
 
-class PosePanel(Widget):
-    """Shows what the screen hands it; computes nothing itself."""
-
-    DEFAULT_CSS = """
-    PosePanel { height: 10; }
-    """
+class TextPanel(Widget):
+    """A panel that shows one Text and repaints only the lines that change."""
 
     def __init__(
         self,
@@ -72,10 +68,19 @@ class PosePanel(Widget):
     ) -> None:
         super().__init__(*children, name=name, id=id, classes=classes)
         self._text = Text()
-        self._titles: tuple[str, str] | None = None
 
     def render(self) -> Text:
         return self._text
+
+
+class PosePanel(TextPanel):
+    """Shows what the screen hands it; computes nothing itself."""
+
+    DEFAULT_CSS = """
+    PosePanel { height: 10; }
+    """
+
+    _titles: tuple[str, str] | None = None
 
     def show(
         self,
