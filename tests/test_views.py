@@ -191,3 +191,17 @@ async def test_the_ansi_theme_hands_the_terminal_its_own_colours():
         await pilot.pause()
         front.render_line(0)
         assert not front._styles[CELL_ROLES.index("z")].color.is_system_defined
+
+
+@pytest.mark.parametrize("size", [(120, 36), (160, 48)])
+async def test_the_editors_preview_shows_the_legend_only_when_it_fits(size):
+    robot, path = load_robot("puma560")
+    app = DhsimApp(robot, path, animate=False, start="edit")
+    async with app.run_test(size=size) as pilot:
+        await pilot.pause()
+        panel = app.screen.query_one(ViewsPanel)
+        legend = panel.query_one(".legend")
+        fits = panel.size.width >= 70  # the legend's one line, and its padding
+        assert legend.display == fits == (size == (160, 48))
+        if fits:
+            assert len(legend.render().plain) <= legend.size.width

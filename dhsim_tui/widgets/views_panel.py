@@ -74,6 +74,7 @@ class ViewsPanel(Container):
         self.maximised = False
         self._zoom_centre: np.ndarray | None = None  # world point zoomed about
         self._wire: Wireframe | None = None
+        self._legend_width = 0
 
     def compose(self) -> ComposeResult:
         with Container(classes="views-grid"):
@@ -92,7 +93,13 @@ class ViewsPanel(Container):
         mono = bool(app.no_color) or app.console.color_system is None
         styles = role_styles(app.console.color_system, ansi_theme=app.current_theme.ansi)
         text = legend(self._ascii, mono, dict(zip(CELL_ROLES, styles, strict=True)))
+        self._legend_width = text.cell_len
         self.query_one(".legend", Static).update(text)
+        self._fit_legend()
+
+    def _fit_legend(self) -> None:
+        """The legend is one line or nothing: never wrapped, never cut."""
+        self.set_class(self.size.width < self._legend_width + 2, "-cramped")
 
     def _restyle(self) -> None:
         """A new theme: the views and legend take its colours (ANSI or not)."""
@@ -213,4 +220,5 @@ class ViewsPanel(Container):
         self._redraw()
 
     def on_resize(self) -> None:
+        self._fit_legend()
         self.call_after_refresh(self._redraw)
