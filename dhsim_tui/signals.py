@@ -43,7 +43,7 @@ from textual.app import App
 from textual.drivers.linux_driver import LinuxDriver
 
 from dhsim_tui.sgr import compact
-from dhsim_tui.terminal import ascii_text, to_ascii
+from dhsim_tui.terminal import ascii_mode, ascii_text, to_ascii
 
 #: signals that end dhsim after keeping unsaved work
 EXIT_SIGNALS = (signal.SIGHUP, signal.SIGTERM, signal.SIGQUIT)
@@ -79,7 +79,7 @@ class DhsimDriver(LinuxDriver):
         :func:`to_ascii` (same cell width): the guarantee that no byte >= 0x80
         reaches the terminal, whatever a widget drew. Then :func:`compact`
         drops the colour codes that change nothing (fewer bytes a key)."""
-        if getattr(self._app, "ascii_mode", False):
+        if ascii_mode(self._app):
             data = to_ascii(data)
         super().write(compact(data))
 
@@ -238,6 +238,6 @@ class SignalGuard:
                     termios.tcsetattr(fd, termios.TCSANOW, attrs)
         if self._messages:
             text = "\n".join(self._messages) + "\n"
-            if getattr(self._app, "ascii_mode", False):
+            if ascii_mode(self._app):
                 text = ascii_text(text)
             _write_bounded(fd, text.encode(), TERMINAL_TIMEOUT)

@@ -26,7 +26,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from dhsim_tui.scene.projection import ISO, Polyline, ViewScene, wire_lines
+from dhsim_tui.core.workspace import WorkArea
+from dhsim_tui.scene.projection import ISO, Polyline, View, ViewScene, wire_lines
 from dhsim_tui.scene.wireframe import Wireframe
 
 #: the isometric elevation, atan(1 / sqrt 2) = 35.26...°
@@ -117,6 +118,35 @@ def _tuples(xy: tuple[np.ndarray, np.ndarray]) -> tuple[tuple[float, ...], tuple
     return tuple(xy[0].tolist()), tuple(xy[1].tolist())
 
 
+def _box(area: WorkArea) -> tuple[np.ndarray, np.ndarray]:
+    return (
+        np.array([area.xmin, area.ymin, area.zmin]),
+        np.array([area.xmax, area.ymax, area.zmax]),
+    )
+
+
+def picture_coordinates(area: WorkArea, orbit: Orbit):
+    """World points (m, 3) -> the 3-D picture's (xs, ys): along the camera's
+    right and up, measured from the centre of the work area."""
+    lows, highs = _box(area)
+    centre = (lows + highs) / 2
+    right, up = camera(orbit)
+
+    def to_2d(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        shifted = np.asarray(points, dtype=float) - centre
+        return shifted @ right, shifted @ up
+
+    return to_2d
+
+
+def view_point(wire: Wireframe, view: View, orbit: Orbit, point: np.ndarray) -> tuple[float, float]:
+    """Where a world point lands in a view's picture (what zooming centres on)."""
+    if view.is_3d:
+        xs, ys = picture_coordinates(wire.area, orbit)(np.asarray(point, dtype=float)[None, :])
+        return float(xs[0]), float(ys[0])
+    return float(point[view.right]), float(point[view.up])
+
+
 def project_oblique(wire: Wireframe, orbit: Orbit = Orbit()) -> ViewScene:
     """The 3-D view of the wireframe from ``orbit``, over the floor grid.
 
@@ -127,15 +157,8 @@ def project_oblique(wire: Wireframe, orbit: Orbit = Orbit()) -> ViewScene:
     stays within its reach of frame 0, which lies inside that sphere.
     """
     area = wire.area
-    lows = np.array([area.xmin, area.ymin, area.zmin])
-    highs = np.array([area.xmax, area.ymax, area.zmax])
-    centre, half = (lows + highs) / 2, (highs - lows) / 2
-    right, up = camera(orbit)
-
-    def to_2d(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        shifted = np.asarray(points, dtype=float) - centre
-        return shifted @ right, shifted @ up
-
+    half = (_box(area)[1] - _box(area)[0]) / 2
+    to_2d = picture_coordinates(area, orbit)
     wider = area.limits("x" if half[0] >= half[1] else "y")
     step = grid_step(*wider)  # one spacing both ways, from the wider side
     grid, outline = floor_points(wire, step)

@@ -51,7 +51,7 @@ from dhsim_tui.screens.control_keys import (
 )
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
-from dhsim_tui.terminal import shown
+from dhsim_tui.terminal import ascii_mode, shown
 from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.cartesian_panel import TITLE as CARTESIAN_TITLE
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
@@ -134,7 +134,7 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
                 yield Static(
-                    KEYS_LEGEND_ASCII if getattr(self.app, "ascii_mode", False) else KEYS_LEGEND,
+                    KEYS_LEGEND_ASCII if ascii_mode(self.app) else KEYS_LEGEND,
                     id="keys",
                 )
             yield ViewsPanel(self.renderer, id="views")

@@ -14,7 +14,7 @@ from textual.widget import Widget
 from dhsim_tui.render.picture import NO_ROLE, Framing, Look, Picture
 from dhsim_tui.render.plotext_picture import PlotextPainter, bare_picture
 from dhsim_tui.scene import View, ViewScene
-from dhsim_tui.widgets.view_style import role_styles
+from dhsim_tui.widgets.view_style import look_of, role_styles
 
 RENDERERS = ("plotext", "braille")
 
@@ -71,11 +71,7 @@ class ArmView(Widget):
 
     @property
     def look(self) -> Look:
-        app = self.app
-        return Look(
-            ascii=bool(getattr(app, "ascii_mode", False)),
-            mono=bool(app.no_color) or app.console.color_system is None,
-        )
+        return look_of(self.app)
 
     def on_mount(self) -> None:
         self.border_title = caption(self.view, self.look.ascii)

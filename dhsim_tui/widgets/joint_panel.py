@@ -15,6 +15,7 @@ from textual.containers import VerticalScroll
 from textual.geometry import Region
 from textual.widgets import Static
 
+from dhsim_tui import terminal
 from dhsim_tui.core.model import LENGTH_DECIMALS, Joint
 
 #: the bar's glyphs: ends, track, home, value, value on its min / max limit
@@ -25,9 +26,10 @@ BAR_ASCII = ("|", "|", "-", ":", "#", "<", ">")
 def ascii_mode(widget: Static) -> bool:
     """Whether the app draws in 7-bit ASCII (``app.ascii_mode``, set by the app)."""
     try:
-        return bool(getattr(widget.app, "ascii_mode", False))
+        app = widget.app
     except Exception:  # no app yet (a widget made outside one)
         return False
+    return terminal.ascii_mode(app)
 
 
 def format_value(joint: Joint, value: float, units: str, ascii: bool = False) -> str:

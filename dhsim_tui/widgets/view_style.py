@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from rich.style import Style
 
-from dhsim_tui.render.picture import CELL_ROLES
+from dhsim_tui.render.picture import CELL_ROLES, Look
+from dhsim_tui.terminal import ascii_mode
 
 #: role -> colour, per colour system (rich's names for them)
 PALETTES: dict[str, dict[str, str]] = {
@@ -96,3 +97,12 @@ def role_styles(color_system: str | None, *, ansi_theme: bool = False, mono: boo
         Style(color=colours.get(role), bold=role in BOLD) if role in colours else Style()
         for role in CELL_ROLES
     ]
+
+
+def look_of(app) -> Look:
+    """How ``app``'s terminal wants the views: 7-bit ASCII, and whether it
+    has colour at all (NO_COLOR, or a terminal without colours)."""
+    return Look(
+        ascii=ascii_mode(app),
+        mono=bool(app.no_color) or app.console.color_system is None,
+    )

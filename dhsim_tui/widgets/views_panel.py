@@ -17,10 +17,11 @@ from textual.widgets import Static
 
 from dhsim_tui.render.picture import CELL_ROLES, Framing
 from dhsim_tui.scene import VIEWS, Wireframe, project
-from dhsim_tui.scene.oblique import Orbit, camera, project_oblique
+from dhsim_tui.scene.oblique import Orbit, project_oblique, view_point
 from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene, per_dot_needed
+from dhsim_tui.terminal import ascii_mode
 from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.view_style import role_styles
+from dhsim_tui.widgets.view_style import look_of, role_styles
 
 #: at and above this size a screen shows all four views at once
 WIDE_SIZE = (120, 36)
@@ -89,10 +90,9 @@ class ViewsPanel(Container):
         self.watch(self.app, "theme", self._restyle, init=False)
 
     def _show_legend(self) -> None:
-        app = self.app
-        mono = bool(app.no_color) or app.console.color_system is None
+        app, look = self.app, look_of(self.app)
         styles = role_styles(app.console.color_system, ansi_theme=app.current_theme.ansi)
-        text = legend(self._ascii, mono, dict(zip(CELL_ROLES, styles, strict=True)))
+        text = legend(look.ascii, look.mono, dict(zip(CELL_ROLES, styles, strict=True)))
         self._legend_width = text.cell_len
         self.query_one(".legend", Static).update(text)
         self._fit_legend()
@@ -139,30 +139,16 @@ class ViewsPanel(Container):
         cols, rows = self._canvas()
         ortho = max(per_dot_needed(s.bounds, cols, rows) for s in scenes[:3]) / self.zoom
         iso = per_dot_needed(scenes[3].bounds, cols, rows) / self.zoom
-        right, up = camera(self.orbit)
         framings = []
         for scene in scenes:
             view = scene.view
-            if self._zoom_centre is not None:
-                c = self._zoom_centre
-                if view.is_3d:  # the 3-D picture is measured from the work area's centre
-                    c = c - self._area_centre()
-                    centre = (float(c @ right), float(c @ up))
-                else:
-                    centre = (float(c[view.right]), float(c[view.up]))
+            if self._zoom_centre is not None and self._wire is not None:
+                centre = view_point(self._wire, view, self.orbit, self._zoom_centre)
             else:
                 b = scene.bounds
                 centre = ((b[0] + b[1]) / 2, (b[2] + b[3]) / 2)
             framings.append(Framing(centre, iso if view.is_3d else ortho))
         return framings
-
-    def _area_centre(self) -> np.ndarray:
-        area = self._wire.area if self._wire is not None else None
-        if area is None:
-            return np.zeros(3)
-        return np.array(
-            [(area.xmin + area.xmax) / 2, (area.ymin + area.ymax) / 2, (area.zmin + area.zmax) / 2]
-        )
 
     def _redraw(self) -> None:
         if self._wire is not None:
@@ -173,7 +159,7 @@ class ViewsPanel(Container):
             scene = widget.scene
             parts = []
             if widget.view.is_3d:
-                parts.append(self.orbit.ascii_label if self._ascii else self.orbit.label)
+                parts.append(self.orbit.ascii_label if ascii_mode(self.app) else self.orbit.label)
                 if scene is not None and scene.grid_step:
                     parts.append(f"grid {scene.grid_step:g} {scene.units}".rstrip())
             if self.zoom != 1.0:
@@ -181,10 +167,6 @@ class ViewsPanel(Container):
             subtitle = "  ".join(parts)
             if widget.border_subtitle != subtitle:
                 widget.border_subtitle = subtitle
-
-    @property
-    def _ascii(self) -> bool:
-        return bool(getattr(self.app, "ascii_mode", False))
 
     # -- keys ---------------------------------------------------------------
     def select(self, index: int) -> None:
