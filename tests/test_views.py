@@ -205,3 +205,11 @@ async def test_the_editors_preview_shows_the_legend_only_when_it_fits(size):
         assert legend.display == fits == (size == (160, 48))
         if fits:
             assert len(legend.render().plain) <= legend.size.width
+
+
+def test_a_theme_that_does_not_exist_gets_one_line(capsys):
+    from dhsim_tui.cli import main
+
+    assert main(["--theme", "bogus"]) == 2
+    err = capsys.readouterr().err
+    assert "invalid choice: 'bogus'" in err and "ansi" in err and "Traceback" not in err
