@@ -131,6 +131,7 @@ async def test_enter_rejects_bad_values_and_changes_nothing(typed, message):
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("down", "enter", "ctrl+u", *typed, "enter")
+        await pilot.pause()  # the refusal is shown once the key has been handled
         assert isinstance(app.screen, ValueEntry)
         assert message in str(app.screen.query_one("#error").render())
         assert app.screen.query_one("Input").value == typed  # kept, to be fixed
