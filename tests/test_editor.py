@@ -46,6 +46,7 @@ def error_text(app: DhsimApp) -> str:
 
 async def type_in(pilot, text: str) -> None:
     await pilot.press("ctrl+u", *text, "enter")
+    await pilot.pause()  # the edit lands (or is refused) once the key is handled
 
 
 async def edit_cell(pilot, row: int, column: int, text: str) -> None:
@@ -182,6 +183,7 @@ async def test_robot_fields(in_tmp):
         async def pick(row):
             fields.move_cursor(row=row)
             await pilot.press("enter")
+            await pilot.pause()  # the field's dialog is open
 
         await pick(0)
         await type_in(pilot, "My Puma")
