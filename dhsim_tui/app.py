@@ -5,15 +5,18 @@ from __future__ import annotations
 import contextlib
 import signal
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from textual import work
 from textual.binding import Binding
+from textual.command import CommandPalette
 from textual.driver import Driver
 from textual.drivers.linux_driver import LinuxDriver
 
 from dhsim_tui import partial_update
 from dhsim_tui.core import editing
+from dhsim_tui.core.convert import convert
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
 from dhsim_tui.core.recovery import Recovery, source_key, write_recovery
@@ -29,11 +32,14 @@ from dhsim_tui.core.text import printable
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.dialogs import SaveGuard
 from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.screens.export_dialog import export_flow
+from dhsim_tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
+from dhsim_tui.screens.palette import DhsimCommands, DhsimPalette, screens_with_commands
 from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.signals import DhsimDriver, SignalGuard
-from dhsim_tui.terminal import ascii_key, install_ascii_scrollbars
+from dhsim_tui.terminal import ascii_key, install_ascii_scrollbars, shown
 from dhsim_tui.typeahead import KeysInOrder
 
 
@@ -86,8 +92,21 @@ class DhsimApp(KeysInOrder):
 
     CSS_PATH = "dhsim.tcss"
     TITLE = "dhsim"
-    ENABLE_COMMAND_PALETTE = False
+    #: ctrl+p: dhsim's commands by name (screens/palette.py), on the simulator
+    #: and the editor; Textual's own system commands are not offered
+    ENABLE_COMMAND_PALETTE = True
+    COMMANDS = {DhsimCommands}
     BINDINGS = [
+        Binding(
+            "ctrl+p",
+            "command_palette",
+            "Commands",
+            key_display="^p",
+            id="app.palette",
+            tooltip="The command palette: every command by name",
+            show=False,
+            priority=True,
+        ),
         # Textual binds ctrl+c to "copy" (screens, inputs) and a "press ctrl+q" hint:
         # here it quits, through the same unsaved-changes question as q and ctrl+q
         Binding(
@@ -131,7 +150,12 @@ class DhsimApp(KeysInOrder):
         self.saved_robot: Robot | None = robot if path is not None else None
         self.stamp = stamp if stamp is not None else _stamp_for(robot, path)
         #: what the app started with: a robot without a file is "saved" as it came
-        self._first_robot = robot
+        #: (None: the running robot was imported, and is unsaved as a whole)
+        self._first_robot: Robot | None = robot
+        #: an imported robot's file not written yet: the comments it starts
+        #: with, and the file it came from
+        self.new_text: str | None = None
+        self.imported_from: Path | None = None
         self.renderer = renderer
         self.start = start
         self.recovery = recovery
@@ -218,14 +242,48 @@ class DhsimApp(KeysInOrder):
         path: Path | None,
         saved: Robot | None = None,
         stamp: FileStamp | None = None,
+        first_edit: tuple[Robot, str] | None = None,
     ) -> None:
         """The editor on ``robot``; ``saved`` is what its file holds (changes
-        against it count as unsaved), ``stamp`` what the file held then."""
-        editor = EditorScreen(robot, path, self.renderer, saved=saved, stamp=stamp)
+        against it count as unsaved), ``stamp`` what the file held then;
+        ``first_edit``: (robot, message), an edit made as it opens."""
+        unfiled = path is None and robot is self.robot
+        editor = EditorScreen(
+            robot,
+            path,
+            self.renderer,
+            saved=saved,
+            stamp=stamp,
+            new_text=self.new_text if unfiled else None,
+            imported_from=self.imported_from if unfiled else None,
+            first_edit=first_edit,
+        )
         self.push_screen(editor, lambda result: self._editor_closed(result, editor.stamp))
 
     def action_edit(self) -> None:
         self.open_editor(self.robot, self.robot_path, saved=self.saved_robot, stamp=self.stamp)
+
+    def convert_in_editor(self, convention: str) -> None:
+        """The running robot in the other D-H convention: the editor opens on
+        it with the conversion as its one edit (the table is the editor's
+        business; ctrl+z there undoes it, escape asks to save or discard)."""
+        before = self.robot.convention
+        try:
+            converted = convert(self.robot, convention)
+        except DhsimError as exc:
+            self._say(str(exc), error=True)
+            return
+        message = (
+            f"converted from {before} to {convention} D-H: the same arm "
+            "(ctrl+z undoes; ctrl+s saves)"
+        )
+        self.open_editor(
+            self.robot,
+            self.robot_path,
+            saved=self.saved_robot,
+            stamp=self.stamp,
+            first_edit=(converted, message),
+        )
 
     def _editor_closed(
         self, result: tuple[Robot, Path | None] | None, stamp: FileStamp | None = None
@@ -236,6 +294,8 @@ class DhsimApp(KeysInOrder):
         robot, path = result
         self.saved_robot = robot
         self.stamp = stamp if path is not None and not is_bundled(path) else None
+        if path is not None:  # saved: no longer an import without a file
+            self.new_text = self.imported_from = None
         if (robot, path) != (self.robot, self.robot_path):
             self._run(robot, path)
 
@@ -264,16 +324,19 @@ class DhsimApp(KeysInOrder):
         self.saved_robot = robot
         return path
 
-    async def save_running_robot(self) -> bool:
+    async def save_running_robot(self, save_as: bool = False) -> bool:
         """Save the simulator's robot (its poses) with the UI's save flow: a
-        name for a bundled or new robot, a question when the file changed on
-        disk. True once nothing is unsaved (saved, or reloaded by choice)."""
+        name for a bundled, new or imported robot (or ``save_as``), a question
+        when the file changed on disk. True once nothing is unsaved (saved, or
+        reloaded by choice)."""
+        path = self.robot_path
         result = await save_flow(
             self,
             self.robot,
-            self.robot_path,
+            path,
             self.stamp,
-            base_text=_text_of(self.robot_path),
+            base_text=_text_of(path) if path is not None else self.new_text,
+            save_as=save_as,
         )
         if result is None:
             return False
@@ -282,6 +345,7 @@ class DhsimApp(KeysInOrder):
 
     def _saved(self, result: SaveResult) -> None:
         self.saved_robot, self.stamp, self.robot_path = result.robot, result.stamp, result.path
+        self.new_text = self.imported_from = None
         if result.kind == "reloaded":  # the file's robot, by the user's choice
             self._run(result.robot, result.path)
 
@@ -289,12 +353,104 @@ class DhsimApp(KeysInOrder):
     async def _save_running_robot(self) -> None:
         await self.save_running_robot()
 
+    # -- the simulator's file commands (the command palette) ----------------------
+    @work(exclusive=True, group="modal")
+    async def save(self) -> None:
+        """Save the running robot (the palette's Save on the simulator)."""
+        await self.save_running_robot()
+
+    @work(exclusive=True, group="modal")
+    async def save_as(self) -> None:
+        await self.save_running_robot(save_as=True)
+
+    @work(exclusive=True, group="modal")
+    async def export_robot(self) -> None:
+        """Export the running robot (its poses too) as URDF, CSV or JSON."""
+        await export_flow(self, self.robot, self.robot_path, report=self._report())
+
+    @work(exclusive=True, group="modal")
+    async def open_robot(self, importing: bool = False) -> None:
+        """The simulator runs another robot: a robot file, or an import
+        (``importing``: only .urdf/.csv), after asking about unsaved poses."""
+        if self.has_unsaved_poses:
+            answer = await self.push_screen_wait(
+                SaveGuard(self.robot.name, "opening another robot")
+            )
+            if answer not in ("save", "discard"):
+                return
+            if answer == "save" and not await self.save_running_robot():
+                return
+        opened = await self.push_screen_wait(OpenRobot(importing=importing))
+        if opened is None:
+            return
+        if opened.imported:
+            self.run_import(opened)
+            return
+        robot, path = opened.robot, opened.source
+        found = await offer_recovery(self, path, robot)  # changes kept by a crash
+        self.saved_robot = self._first_robot = robot
+        self.stamp = None if is_bundled(path) else opened.stamp
+        self.new_text = self.imported_from = None
+        self._run(robot, path)
+        if found is not None:
+            self.open_editor(found.robot, path, saved=robot, stamp=self.stamp)
+
+    def run_import(self, opened: Opened) -> None:
+        """The simulator runs an imported robot. It has no robot file: it is
+        unsaved (quitting asks; saving asks a name in robots/)."""
+        self.saved_robot = self._first_robot = None
+        self.stamp = None
+        self.new_text = header_text(opened.header)
+        self.imported_from = opened.source
+        self._run(opened.robot, None)
+        self.push_screen(
+            ImportNotes(opened, f"the palette's Save (ctrl+p) saves it as {ROBOTS_DIR}/<name>.toml")
+        )
+
+    def _report(self) -> Callable[[str, bool], None] | None:
+        """Where a flow on the simulator reports: its status line (else a toast)."""
+        screen = self.screen
+        return screen.say if isinstance(screen, ControlScreen) else None
+
+    def _say(self, message: str, error: bool = False) -> None:
+        report = self._report()
+        if report is not None:
+            report(message, error)
+        else:
+            self.notify(shown(printable(message), self), markup=False)
+
+    # -- the command palette and themes -------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        """ctrl+p opens the palette on the simulator and the editor, not over
+        a dialog (the key then goes on to it, which ignores it)."""
+        if action == "command_palette":
+            return self._palette_allowed()
+        return True
+
+    def _palette_allowed(self) -> bool:
+        return (
+            self.use_command_palette
+            and not CommandPalette.is_open(self)
+            and isinstance(self.screen, screens_with_commands())
+        )
+
+    def action_command_palette(self) -> None:
+        if self._palette_allowed():
+            self.push_screen(DhsimPalette())
+
+    def theme_choices(self) -> dict[str, str]:
+        """--theme's names and the Textual themes they stand for."""
+        return dict(THEMES)
+
+    def set_theme(self, name: str) -> None:
+        self.theme = THEMES[name]
+
     # -- unsaved work ------------------------------------------------------------
     @property
     def has_unsaved_poses(self) -> bool:
         """The running robot differs from its file: a pose kept only in memory."""
         baseline = self.saved_robot if self.saved_robot is not None else self._first_robot
-        return self.robot != baseline
+        return baseline is None or self.robot != baseline
 
     def _editors(self) -> list[EditorScreen]:
         return [s for s in reversed(self.screen_stack) if isinstance(s, EditorScreen)]

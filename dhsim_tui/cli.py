@@ -21,6 +21,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from dhsim_tui import __version__
+from dhsim_tui.cli_files import subparsers as files_subparsers
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.ik import solve
 from dhsim_tui.core.ik_reasons import angle, length
@@ -37,7 +38,7 @@ EXIT_INTERNAL = 1
 EXIT_INTERRUPTED = 130
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check and list work without one"
+    "fk, ik, check, list, import, export and convert work without one"
 )
 #: options whose value may start with a minus sign (``--q -10,20``)
 VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
@@ -337,7 +338,15 @@ def _subparsers() -> dict[str, _Parser]:
     new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
     _add_charset_options(new)
     new.set_defaults(func=cmd_new)
-    return {"fk": fk, "ik": ik, "check": check, "list": listing, "edit": edit, "new": new}
+    return {
+        "fk": fk,
+        "ik": ik,
+        "check": check,
+        "list": listing,
+        "edit": edit,
+        "new": new,
+        **files_subparsers(_Parser),
+    }
 
 
 MAIN_HELP = """\
@@ -348,6 +357,10 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
        dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--json]
        dhsim check ROBOT
        dhsim list
+       dhsim import FILE.urdf|FILE.csv [--tip LINK] [--base LINK]
+                    [--convention standard|modified] [--units mm|cm|m|in] [-o OUT.toml]
+       dhsim export ROBOT --format urdf|csv|json [-o FILE]
+       dhsim convert ROBOT --convention standard|modified [-o FILE.toml]
        dhsim edit ROBOT [--ascii | --unicode]
                                  the table editor
        dhsim new [NAME] [--ascii | --unicode]

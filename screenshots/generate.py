@@ -60,6 +60,7 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
         (80, 24),
         MOVE,
     ),
+    ("palette-80x24", "puma560", (80, 24), ("ctrl+p", "g", "o", " ", "t", "o")),
     (
         "control-160x48",
         "puma560",

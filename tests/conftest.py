@@ -50,10 +50,13 @@ def reference_frames(robot, q):
     z = np.array(_AXIS[robot.base_z], float)
     m = np.eye(4)
     m[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    roll, pitch, yaw = (math.radians(v) for v in robot.base_rpy)
+    m = _trans(*robot.base_xyz) @ m @ _rz(yaw) @ _ry(pitch) @ _rx(roll)
     frames = [m]
     for joint, value in zip(robot.joints, q, strict=True):
-        theta = math.radians(value if joint.is_revolute else joint.theta)
-        d = joint.d if joint.is_revolute else value
+        variable = value + joint.offset  # the D-H variable is q + offset
+        theta = math.radians(variable if joint.is_revolute else joint.theta)
+        d = joint.d if joint.is_revolute else variable
         alpha = math.radians(joint.alpha)
         if robot.convention == "standard":
             t = _rz(theta) @ _trans(0, 0, d) @ _trans(joint.a, 0, 0) @ _rx(alpha)

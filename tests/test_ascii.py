@@ -338,9 +338,9 @@ def test_under_lc_all_c_every_byte_on_the_terminal_is_ascii(tmp_path):
         term.send("escape")
         term.wait_for(lambda screen: "escape closes" not in screen)
         term.send("e")
-        term.wait_for("joint variable")
+        term.wait_for("D-H variable")
         term.send("escape")
-        term.wait_for(lambda screen: "joint variable" not in screen and "Th1" in screen)
+        term.wait_for(lambda screen: "D-H variable" not in screen and "Th1" in screen)
         time.sleep(0.2)  # the last frame
         screen = term.screen_text()
         term.send("q")

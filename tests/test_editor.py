@@ -90,8 +90,9 @@ async def test_edit_a_cell_and_undo_redo():
         (5, "inf", "out of range"),
         (5, "1e400", "out of range"),
         (2, "200", "home value 200 deg is outside the joint's limits -160..160"),
-        (6, "160", "min (160) must be less than max (160)"),
-        (7, "-170", "min (-160) must be less than max (-170)"),
+        (6, "200", "home value -200 deg (theta - offset) is outside"),
+        (7, "160", "min (160) must be less than max (160)"),
+        (8, "-170", "min (-160) must be less than max (-170)"),
     ],
 )
 async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tmp):
@@ -110,6 +111,24 @@ async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tm
         assert editor(app).robot == robot
         assert not editor(app).dirty
     assert file.read_bytes() == before
+
+
+async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same():
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        before = editor(app).robot
+        await edit_cell(pilot, 1, 6, "-90")  # joint 2 offset
+        robot = editor(app).robot
+        assert robot.joints[1].offset == -90.0 and robot.joints[1].theta == 0.0
+        assert robot.home[1] == 90.0  # joint value = theta - offset
+        assert (
+            robot.kinematics.pose(robot.home).tolist()
+            == before.kinematics.pose(before.home).tolist()
+        )
+        assert "joint 2 offset = -90 deg" in status(app)
+        table = editor(app).query_one("#joints-table")
+        assert str(table.get_cell_at((1, 6))) == "-90"
 
 
 async def test_toggle_type_moves_the_variable():
@@ -219,10 +238,16 @@ async def test_robot_fields(in_tmp):
         ]
         await pilot.press("down", "down", "enter")
         assert editor(app).robot.base_x == "+y"
-        await pick(6)
+        await pick(6)  # base xyz: frame 0 moves, in the robot's unit
+        await type_in(pilot, "0.1, 0, 0")
+        assert editor(app).robot.base_xyz == (0.1, 0.0, 0.0)
+        await pick(7)
+        await type_in(pilot, "0, 0, 30")
+        assert editor(app).robot.base_rpy == (0.0, 0.0, 30.0)
+        await pick(8)
         await type_in(pilot, "0, 0, 0.1")
         assert editor(app).robot.tool.xyz == (0.0, 0.0, 0.1)
-        await pick(7)
+        await pick(9)
         await type_in(pilot, "1, 2")
         assert "expected 3 numbers" in error_text(app)
         await type_in(pilot, "0, 0, 90")

@@ -156,7 +156,7 @@ async def test_a_wide_table_scrolls_instead_of_cutting():
         assert table.virtual_size.width > table.scrollable_content_region.width
         text = "\n".join(screen_lines(app))
         assert "-98765.4321012" in text and "123456.78901234" in text
-        table.move_cursor(row=0, column=7)  # max: off the right edge until scrolled
+        table.move_cursor(row=0, column=8)  # max: off the right edge until scrolled
         await pilot.pause()
         assert table.scroll_x > 0
         assert " 180 " in screen_lines(app)[table.region.y + 3]
@@ -291,9 +291,13 @@ async def test_column_headers_show_units():
 def test_limit_units_follow_the_joint_types():
     puma, stanford = load_robot("puma560")[0], load_robot("stanford")[0]
     gantry = load_robot("gantry")[0]
-    assert joint_labels(puma)[6:] == ("min\n(deg)", "max\n(deg)")
-    assert joint_labels(gantry)[6:] == ("min\n(mm)", "max\n(mm)")
-    assert joint_labels(stanford)[6:] == ("min\n(deg|mm)", "max\n(deg|mm)")
+    assert joint_labels(puma)[6:] == ("offset\n(deg)", "min\n(deg)", "max\n(deg)")
+    assert joint_labels(gantry)[6:] == ("offset\n(mm)", "min\n(mm)", "max\n(mm)")
+    assert joint_labels(stanford)[6:] == (
+        "offset\n(deg|mm)",
+        "min\n(deg|mm)",
+        "max\n(deg|mm)",
+    )
 
 
 async def test_undo_and_redo_say_what_they_changed():

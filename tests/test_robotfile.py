@@ -186,7 +186,7 @@ def test_missing_required_key(tmp_path, path, fragments):
         ((), "base_hieght", ["base_hieght: unknown key", "did you mean 'base_height'"]),
         (("joints", 2), "alhpa", ["joints[3].alhpa: unknown key", "did you mean 'alpha'"]),
         (("joints", 0), "thetta", ["joints[1].thetta", "did you mean 'theta'"]),
-        (("joints", 1), "offset", ["joints[2].offset: unknown key"]),
+        (("joints", 1), "ofset", ["joints[2].ofset: unknown key", "did you mean 'offset'"]),
         (("tool",), "xzy", ["tool.xzy: unknown key", "did you mean 'xyz'"]),
     ],
 )

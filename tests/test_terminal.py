@@ -48,7 +48,7 @@ def recovery_files(env: dict[str, str]) -> list[Path]:
 def edit_with_a_change(robot_file: Path, env: dict[str, str]) -> PtyScreen:
     """``dhsim edit`` on the robot, with joint 1 toggled to prismatic (unsaved)."""
     term = PtyScreen(["edit", str(robot_file)], env=env)
-    term.wait_for("* joint variable")
+    term.wait_for("* D-H variable")
     term.send("t")
     term.wait_for(DIRTY)
     return term

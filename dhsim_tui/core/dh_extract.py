@@ -269,7 +269,7 @@ def convert(chain: DHChain, convention: str) -> DHChain:
             ]
             + [abs(r.d) + abs(r.a) for r in rows]
         )
-        a_n, alpha_n = _tool_link(chain.tool, PEEL_TOL * size)
+        a_n, alpha_n = tool_link(chain.tool, PEEL_TOL * size)
         pairs = [(r.a, r.alpha) for r in rows[1:]] + [(a_n, alpha_n)]
         base = chain.base @ link_matrix("modified", 0.0, 0.0, rows[0].a, rows[0].alpha)
         tool = _inverse(link_matrix("standard", 0.0, 0.0, a_n, alpha_n)) @ chain.tool
@@ -327,7 +327,7 @@ def _next_link(
     return _angle(x_prev, x, z), d, a, alpha
 
 
-def _tool_link(tool: np.ndarray, tol: float) -> tuple[float, float]:
+def tool_link(tool: np.ndarray, tol: float) -> tuple[float, float]:
     """(a, alpha) with ``tool = Tx(a)·Rx(alpha)·Tz(d)·Rz(theta)``, or (0, 0)."""
     z, o = tool[:3, 2], tool[:3, 3]
     if abs(float(z[0])) > PEEL_TOL or abs(float(o[1] * z[2] - o[2] * z[1])) > tol:

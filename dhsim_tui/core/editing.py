@@ -21,7 +21,7 @@ from dhsim_tui.core.model import (
 )
 from dhsim_tui.core.validation import check_number, perpendicular_axes
 
-JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max")
+JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max", "offset")
 #: fields whose numbers are lengths (converted when the unit changes)
 LENGTH_FIELDS = ("d", "a")
 #: a file name for a robot: letters, digits, space, dot, dash, underscore
@@ -74,7 +74,8 @@ def toggle_type(robot: Robot, index: int) -> Robot:
     low, high = default_limits(new_type, robot.units)
     home = joint.d if new_type == "prismatic" else joint.theta
     low, high = min(low, home), max(high, home)
-    toggled = replace(joint, type=new_type, min=low, max=high)
+    # the offset was in the old variable's unit: the new variable starts without one
+    toggled = replace(joint, type=new_type, min=low, max=high, offset=0.0)
     poses = _pose_values(robot, index, lambda _values: toggled.home)
     return _rebuild(robot, joints=_joints(robot, index, toggled), poses=poses)
 
@@ -141,7 +142,11 @@ def set_units(robot: Robot, units: str) -> Robot:
     def joint(j: Joint) -> Joint:
         changes = {"d": factor_of(j.d), "a": factor_of(j.a)}
         if not j.is_revolute:
-            changes |= {"min": factor_of(j.min), "max": factor_of(j.max)}
+            changes |= {
+                "min": factor_of(j.min),
+                "max": factor_of(j.max),
+                "offset": factor_of(j.offset),
+            }
         return replace(j, **changes)
 
     poses = tuple(
@@ -160,6 +165,7 @@ def set_units(robot: Robot, units: str) -> Robot:
         units=units,
         joints=tuple(joint(j) for j in robot.joints),
         base_height=factor_of(robot.base_height),
+        base_xyz=tuple(factor_of(v) for v in robot.base_xyz),
         tool=tool,
         poses=poses,
     )
@@ -193,6 +199,15 @@ def set_base_x(robot: Robot, axis: str) -> Robot:
             f"choose one of {', '.join(perpendicular_axes(robot.base_z))}"
         )
     return _rebuild(robot, base_x=axis)
+
+
+def set_base(robot: Robot, xyz=None, rpy=None) -> Robot:
+    """The general base: frame 0's offset and turn after base_z/base_x."""
+    return _rebuild(
+        robot,
+        base_xyz=tuple(float(v) for v in xyz) if xyz is not None else robot.base_xyz,
+        base_rpy=tuple(float(v) for v in rpy) if rpy is not None else robot.base_rpy,
+    )
 
 
 def set_tool(robot: Robot, xyz=None, rpy=None) -> Robot:

@@ -23,7 +23,7 @@ import numpy as np
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.orientation import (
-    base_rotation,
+    base_transform,
     oat_from_matrix,
     rpy_from_matrix,
     rpy_matrix,
@@ -98,6 +98,8 @@ def _joint_lines(robot: Robot, index: int, q: str = "") -> list[str]:
     """Joint ``index``'s transform as lines on the state; its variable is ``q``."""
     joint = robot.joints[index]
     q = q or f"q{index}"
+    if joint.offset:  # the D-H variable is the joint value plus the offset
+        q = f"({q} + {float(joint.offset)!r})"
     if joint.is_revolute:
         rot_z = [f"c = _cos({q}*{_DEG!r}); s = _sin({q}*{_DEG!r})", _rotate("x", "y", "c", "s")]
         move_d = _translate("z", repr(float(joint.d)))
@@ -125,6 +127,17 @@ def _constant_lines(matrix: np.ndarray) -> list[str]:
     return [*lines, f"{names} = {', '.join(cols)}"]
 
 
+def robot_base(robot: Robot) -> np.ndarray:
+    """Frame 0 in world coordinates (4×4)."""
+    return base_transform(robot.base_z, robot.base_x, robot.base_xyz, robot.base_rpy)
+
+
+def _start(robot: Robot) -> tuple[float, ...]:
+    """The chain's starting state: frame 0's axes (columns) then its origin."""
+    base = robot_base(robot)
+    return (*(float(v) for v in base[:3, :3].T.reshape(-1)), *(float(v) for v in base[:3, 3]))
+
+
 _STATE = "(x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2)"
 #: the same state as the rows of a 4×4 homogeneous transform
 _MATRIX = "(x0, y0, z0, p0, x1, y1, z1, p1, x2, y2, z2, p2, 0.0, 0.0, 0.0, 1.0)"
@@ -132,8 +145,7 @@ _MATRIX = "(x0, y0, z0, p0, x1, y1, z1, p1, x2, y2, z2, p2, 0.0, 0.0, 0.0, 1.0)"
 
 def _compile(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     """Write and compile ``f(q)`` for this robot; ``record`` returns every frame."""
-    base = base_rotation(robot.base_z, robot.base_x)
-    start = [repr(float(v)) for v in base.T.reshape(-1)] + ["0.0", "0.0", "0.0"]
+    start = [repr(float(v)) for v in _start(robot)]
     body = [f"{_STATE[1:-1]} = {', '.join(start)}"]
     qs = ", ".join(f"q{i}" for i in range(robot.dof))
     body.append(f"{qs}, = q")
@@ -195,8 +207,7 @@ def _matrix(s: tuple[float, ...]) -> list[float]:
 
 def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     """The chain of :func:`_compile` as a loop over cached per-joint steps."""
-    base = base_rotation(robot.base_z, robot.base_x)
-    start = (*(float(v) for v in base.T.reshape(-1)), 0.0, 0.0, 0.0)
+    start = _start(robot)
     steps = [_step(tuple(_joint_lines(robot, i, "qi"))) for i in range(robot.dof)]
     if tool is not None:
         steps.append(_step(tuple(_constant_lines(tool))))
@@ -232,8 +243,7 @@ class Kinematics:
     def __init__(self, robot: Robot) -> None:
         self.robot = robot
         self.dof = robot.dof
-        self.base = np.eye(4)
-        self.base[:3, :3] = base_rotation(robot.base_z, robot.base_x)
+        self.base = robot_base(robot)
         self.tool = np.eye(4)
         self.tool[:3, :3] = rpy_matrix(*robot.tool.rpy)
         self.tool[:3, 3] = robot.tool.xyz
@@ -299,13 +309,15 @@ class Kinematics:
         count = qs.shape[0]
         axes = [np.repeat(self.base[:3, k : k + 1], count, axis=1) for k in range(3)]
         p = out[:3, 3]
+        p[...] = self.base[:3, 3:4]
         scratch = np.empty((3, count))
         standard = self.robot.convention == "standard"
         for i, joint in enumerate(self.robot.joints):
+            variable = qs[:, i] + joint.offset if joint.offset else qs[:, i]
             if joint.is_revolute:
-                rot_z, d = _batch_cos_sin(qs[:, i] * _DEG), joint.d
+                rot_z, d = _batch_cos_sin(variable * _DEG), joint.d
             else:
-                rot_z, d = _cos_sin(joint.theta), qs[:, i]
+                rot_z, d = _cos_sin(joint.theta), variable
             if not standard:
                 _batch_rotate(axes, 1, 2, _cos_sin(joint.alpha), scratch)
                 _batch_translate(p, axes[0], joint.a, scratch)

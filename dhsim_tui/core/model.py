@@ -61,8 +61,18 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Joint:
-    """One D-H row. The joint variable is theta (revolute) or d (prismatic);
-    the value written in the row is the joint's home value."""
+    """One D-H row. The D-H variable is theta (revolute) or d (prismatic); the
+    number written in the row is its value at the joint's home.
+
+    ``offset`` relates the joint value ``q`` (what the user sees, types and
+    saves, what limits and poses are in, a controller's or URDF's number) to
+    the D-H variable, as in the Robotics Toolbox:
+
+        theta = q + offset   (revolute)        d = q + offset   (prismatic)
+
+    so the home joint value is ``theta - offset`` (``d - offset``). With the
+    default offset 0 the joint value is the D-H variable itself.
+    """
 
     type: JointType = "revolute"
     theta: float = 0.0
@@ -71,6 +81,7 @@ class Joint:
     alpha: float = 0.0
     min: float = -REVOLUTE_LIMIT_DEG
     max: float = REVOLUTE_LIMIT_DEG
+    offset: float = 0.0
 
     @property
     def is_revolute(self) -> bool:
@@ -78,7 +89,12 @@ class Joint:
 
     @property
     def home(self) -> float:
-        """The joint variable's value in the table."""
+        """The home joint value: the table's D-H variable less the offset."""
+        return (self.theta if self.is_revolute else self.d) - self.offset
+
+    @property
+    def table_value(self) -> float:
+        """The D-H variable's entry in the table (its value at home)."""
         return self.theta if self.is_revolute else self.d
 
     @property
@@ -95,8 +111,8 @@ class Joint:
         return "deg" if self.is_revolute else units
 
     def with_home(self, value: float) -> Joint:
-        """This joint with its variable's table value replaced."""
-        return replace(self, **{self.variable: float(value)})
+        """This joint with its home joint value replaced (the table entry follows)."""
+        return replace(self, **{self.variable: float(value) + self.offset})
 
 
 @dataclass(frozen=True)
@@ -131,6 +147,11 @@ class Robot:
     base_height: float = 0.0
     base_z: str = "+z"
     base_x: str = "+x"
+    #: the general base: frame 0 = translate(base_xyz) · axes(base_z, base_x) ·
+    #: rpy(base_rpy) in world coordinates (translation in robot units, angles
+    #: in degrees, R = Rz(yaw) Ry(pitch) Rx(roll) as for the tool)
+    base_xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    base_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
     tool: Tool = field(default_factory=Tool)
     poses: tuple[tuple[str, tuple[float, ...]], ...] = ()
 
@@ -150,6 +171,19 @@ class Robot:
     @property
     def home(self) -> tuple[float, ...]:
         return tuple(j.home for j in self.joints)
+
+    @property
+    def offsets(self) -> tuple[float, ...]:
+        return tuple(j.offset for j in self.joints)
+
+    @property
+    def has_offsets(self) -> bool:
+        return any(self.offsets)
+
+    @property
+    def base_is_shorthand(self) -> bool:
+        """True when base_height, base_z and base_x alone place frame 0."""
+        return not any(self.base_xyz) and not any(self.base_rpy)
 
     @property
     def labels(self) -> tuple[str, ...]:

@@ -49,6 +49,21 @@ def base_rotation(base_z: str, base_x: str) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
+def base_transform(
+    base_z: str,
+    base_x: str,
+    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0),
+) -> np.ndarray:
+    """Frame 0 in world coordinates: translate(xyz) · axes(base_z, base_x) · rpy."""
+    base = np.eye(4)
+    base[:3, :3] = base_rotation(base_z, base_x)
+    if any(rpy):
+        base[:3, :3] = base[:3, :3] @ rpy_matrix(*rpy)
+    base[:3, 3] = xyz
+    return base
+
+
 def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """R = Rz(yaw) · Ry(pitch) · Rx(roll)."""
     return rotz(yaw) @ roty(pitch) @ rotx(roll)

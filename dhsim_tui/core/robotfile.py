@@ -17,6 +17,7 @@ from __future__ import annotations
 import difflib
 import hashlib
 import os
+import re
 import stat
 import tomllib
 from collections.abc import Mapping
@@ -42,11 +43,13 @@ TOP_KEYS = (
     "base_height",
     "base_z",
     "base_x",
+    "base_xyz",
+    "base_rpy",
     "tool",
     "poses",
     "joints",
 )
-JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max")
+JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max", "offset")
 JOINT_REQUIRED = ("theta", "d", "a", "alpha")
 TOOL_KEYS = ("xyz", "rpy")
 #: robot files larger than this are refused before parsing (a robot is < 10 kB)
@@ -119,11 +122,11 @@ def _joint(data: object, number: int, units: str) -> Joint:
     )
     values = {key: check_number(table[key], f"{where}.{key}") for key in JOINT_REQUIRED}
     low, high = default_limits(joint_type, units)
-    limits = {
+    optional = {
         key: check_number(table[key], f"{where}.{key}") if key in table else default
-        for key, default in (("min", low), ("max", high))
+        for key, default in (("min", low), ("max", high), ("offset", 0.0))
     }
-    return Joint(type=joint_type, **values, **limits)  # type: ignore[arg-type]
+    return Joint(type=joint_type, **values, **optional)  # type: ignore[arg-type]
 
 
 def robot_from_dict(data: Mapping[str, Any]) -> Robot:
@@ -161,6 +164,8 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
         base_height=check_number(base_height, "base_height"),
         base_z=_string(data.get("base_z", "+z"), "base_z"),
         base_x=_string(data.get("base_x", "+x"), "base_x"),
+        base_xyz=_triple(data.get("base_xyz", [0.0, 0.0, 0.0]), "base_xyz"),
+        base_rpy=_triple(data.get("base_rpy", [0.0, 0.0, 0.0]), "base_rpy"),
         tool=tool,
         poses=tuple(poses),
     )
@@ -238,14 +243,20 @@ def robot_to_dict(robot: Robot, *, full: bool = False) -> dict[str, Any]:
         "base_z": robot.base_z,
         "base_x": robot.base_x,
     }
+    if full or not robot.base_is_shorthand:
+        data["base_xyz"] = _floats(robot.base_xyz)
+        data["base_rpy"] = _floats(robot.base_rpy)
     if full or not robot.tool.is_identity:
         data["tool"] = {"xyz": _floats(robot.tool.xyz), "rpy": _floats(robot.tool.rpy)}
     if full or robot.poses:
         data["poses"] = {name: _floats(values) for name, values in robot.poses}
     data["joints"] = [
-        {"type": j.type} | dict(zip(JOINT_KEYS[1:], _floats(_values(j)), strict=True))
+        {"type": j.type} | dict(zip(JOINT_KEYS[1:7], _floats(_values(j)), strict=True))
         for j in robot.joints
     ]
+    for row, j in zip(data["joints"], robot.joints, strict=True):
+        if full or j.offset:
+            row["offset"] = float(j.offset)
     return data
 
 
@@ -265,18 +276,31 @@ def _defaults(robot: Robot) -> dict[str, Any]:
         "base_height": 0.0,
         "base_z": "+z",
         "base_x": "+x",
+        "base_xyz": [0.0, 0.0, 0.0],
+        "base_rpy": [0.0, 0.0, 0.0],
         "tool": {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]},
         "poses": {},
         "joints": [
             dict(zip(("min", "max"), default_limits(j.type, robot.units), strict=True))
-            | {"type": "revolute"}
+            | {"type": "revolute", "offset": 0.0}
             for j in robot.joints
         ],
     }
 
 
+#: an array of numbers tomli_w wrote one item per line
+_NUMBER_COLUMN = re.compile(r"\[\n((?:    [-+0-9.eE]+(?:inf|nan)?,\n)+)\]")
+
+
 def dumps(robot: Robot) -> str:
-    return tomli_w.dumps(robot_to_dict(robot), multiline_strings=False)
+    """A fresh robot file; arrays of numbers on one line, as people write them."""
+    text = tomli_w.dumps(robot_to_dict(robot), multiline_strings=False)
+    return _NUMBER_COLUMN.sub(
+        lambda m: (
+            "[" + ", ".join(item.strip().rstrip(",") for item in m.group(1).splitlines()) + "]"
+        ),
+        text,
+    )
 
 
 def _reads_back(text: str | None, robot: Robot) -> bool:

@@ -58,6 +58,14 @@ _REFUSED_TYPES = ("floating", "planar")
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
 
+class TipNeeded(DhsimError):
+    """The links below the base form a tree: the user must choose a tip."""
+
+    def __init__(self, message: str, leaves: tuple[str, ...]) -> None:
+        super().__init__(message)
+        self.leaves = leaves
+
+
 class _Refused(Exception):
     """Raised by the expat handlers to stop at a DOCTYPE or declaration."""
 
@@ -112,6 +120,7 @@ class UrdfChain:
     base: str
     tip: str
     joints: tuple[UrdfJoint, ...]
+    name: str = ""  # the <robot name="..."> attribute
 
     @property
     def moving(self) -> tuple[UrdfJoint, ...]:
@@ -190,10 +199,12 @@ def read_chain(
     Raises :class:`DhsimError`, one line starting with ``source`` (when
     given), for anything wrong with the file or the names given.
     """
+    prefix = f"{source}: " if source else ""
     try:
         return _read_chain(text, tip, base)
+    except TipNeeded as exc:
+        raise TipNeeded(printable(f"{prefix}{exc}"), exc.leaves) from None
     except DhsimError as exc:
-        prefix = f"{source}: " if source else ""
         raise DhsimError(printable(f"{prefix}{exc}")) from None
 
 
@@ -223,7 +234,7 @@ def _read_chain(text: str, tip: str | None, base: str | None) -> UrdfChain:
     chain = tuple(_joint(edge.name, edge.element) for edge in reversed(path))
     if not any(j.moves for j in chain):
         raise DhsimError(f"no moving joint between link {base!r} and link {tip!r}")
-    return UrdfChain(base=base, tip=tip, joints=chain)
+    return UrdfChain(base=base, tip=tip, joints=chain, name=robot.get("name", "") or "")
 
 
 def _parse(text: str) -> ET.Element:
@@ -354,9 +365,10 @@ def _only_leaf(base: str, links: list[str], joints: list[_Edge]) -> str:
         else:
             leaves.append(link)
     if len(leaves) > 1:
-        raise DhsimError(
+        raise TipNeeded(
             f"the links below {base!r} form a tree, not a chain; choose a tip among its "
-            f"{len(leaves)} leaf links: " + ", ".join(map(repr, leaves))
+            f"{len(leaves)} leaf links: " + ", ".join(map(repr, leaves)),
+            tuple(leaves),
         )
     return leaves[0]
 

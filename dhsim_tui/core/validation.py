@@ -124,9 +124,9 @@ def check_length(value: float, where: str, units: str) -> None:
 def check_joint(joint: Joint, number: int, units: str) -> None:
     where = f"joints[{number}]"
     check_choice(joint.type, JOINT_TYPES, f"{where}.type")
-    for name in ("theta", "d", "a", "alpha", "min", "max"):
+    for name in ("theta", "d", "a", "alpha", "min", "max", "offset"):
         check_number(getattr(joint, name), f"{where}.{name}")
-    lengths = ("d", "a") if joint.is_revolute else ("d", "a", "min", "max")
+    lengths = ("d", "a") if joint.is_revolute else ("d", "a", "min", "max", "offset")
     for name in lengths:
         check_length(getattr(joint, name), f"{where}.{name}", units)
     unit = joint.unit(units)
@@ -135,10 +135,24 @@ def check_joint(joint: Joint, number: int, units: str) -> None:
             f"{where}: min ({fmt(joint.min)}) must be less than max ({fmt(joint.max)})"
         )
     if not joint.min <= joint.home <= joint.max:
+        shifted = f" ({joint.variable} - offset)" if joint.offset else ""
         raise DhsimError(
-            f"{where}.{joint.variable}: home value {fmt(joint.home)} {unit} is outside "
-            f"the joint's limits {fmt(joint.min)}..{fmt(joint.max)} {unit}"
+            f"{where}.{joint.variable}: home value {fmt(joint.home)} {unit}{shifted} is "
+            f"outside the joint's limits {fmt(joint.min)}..{fmt(joint.max)} {unit}"
         )
+
+
+def check_triple(values: object, where: str, units: str | None) -> None:
+    """Three finite numbers; lengths (``units`` given) 0 or at least 1 nm."""
+    if isinstance(values, str | bytes) or not isinstance(values, Iterable):
+        raise DhsimError(f"{where}: expected 3 numbers, got {_describe(values)}")
+    values = list(values)
+    if len(values) != 3:
+        raise DhsimError(f"{where}: expected 3 numbers, got {len(values)}")
+    for i, v in enumerate(values, start=1):
+        check_number(v, f"{where}[{i}]")
+        if units is not None:
+            check_length(v, f"{where}[{i}]", units)
 
 
 def check_text(value: str, where: str, what: str) -> None:
@@ -167,14 +181,13 @@ def check_robot(robot: Robot) -> None:
             f"base_x: {robot.base_x!r} is parallel to base_z {robot.base_z!r}; "
             f"choose one of {', '.join(perpendicular_axes(robot.base_z))}"
         )
-    for key in ("xyz", "rpy"):
-        values = getattr(robot.tool, key)
-        if len(values) != 3:
-            raise DhsimError(f"tool.{key}: expected 3 numbers, got {len(values)}")
-        for i, v in enumerate(values, start=1):
-            check_number(v, f"tool.{key}[{i}]")
-            if key == "xyz":
-                check_length(v, f"tool.xyz[{i}]", robot.units)
+    for where, values in (
+        ("base_xyz", robot.base_xyz),
+        ("base_rpy", robot.base_rpy),
+        ("tool.xyz", robot.tool.xyz),
+        ("tool.rpy", robot.tool.rpy),
+    ):
+        check_triple(values, where, robot.units if where.endswith("xyz") else None)
     count = len(robot.joints)
     if not MIN_JOINTS <= count <= MAX_JOINTS:
         raise DhsimError(

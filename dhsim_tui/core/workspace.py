@@ -39,6 +39,10 @@ class WorkArea:
 
 
 def work_area(robot: Robot) -> WorkArea:
-    """Centred on frame 0; floor at -base_height; sides and ceiling at reach + 30 mm."""
+    """Centred on frame 0 (the world origin unless base_xyz moves it); floor
+    at -base_height; sides and ceiling at reach + 30 mm from frame 0."""
     side = reach(robot) + robot.mm(WORK_AREA_MARGIN_MM)
-    return WorkArea(-side, side, -side, side, -robot.base_height, side)
+    x, y, z = robot.base_xyz
+    floor = -robot.base_height
+    bottom = floor if z >= floor else z - side  # a frame 0 under the floor: the arm hangs
+    return WorkArea(x - side, x + side, y - side, y + side, bottom, z + side)

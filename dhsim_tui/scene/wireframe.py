@@ -33,7 +33,7 @@ class Wireframe:
     origins: np.ndarray  # (f, 3)
     axes: np.ndarray  # (f, 3, 3)
     end_effector: np.ndarray  # (3,)
-    pedestal: np.ndarray | None  # (2, 3) floor to frame 0, when base_height > 0
+    pedestal: np.ndarray | None  # (2, 3) floor to frame 0, when frame 0 is above the floor
     floor_z: float
     area: WorkArea
     below_floor: tuple[int, ...]  # frames whose origin is under the floor
@@ -63,8 +63,9 @@ def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
     axes = drawn_origins[:, None, :] + scale[:, None, None] * drawn[:, :3, :3].transpose(0, 2, 1)
     floor_z = -robot.base_height
     pedestal = None
-    if robot.base_height > 0:
-        pedestal = np.array([[0.0, 0.0, floor_z], [0.0, 0.0, 0.0]])
+    x, y, z = origins[0]
+    if z > floor_z + tolerance:
+        pedestal = np.array([[x, y, floor_z], [x, y, z]])
     links = origins if not robot.tool.is_identity else origins[: n + 1]
     below = tuple(int(i) for i in np.nonzero(origins[: n + 1, 2] < floor_z - tolerance)[0])
     return Wireframe(

@@ -371,8 +371,16 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         if not names:
             self.say(f"{self.robot.name} has no named poses", error=True)
             return
-        self._pose_cursor = (self._pose_cursor + 1) % len(names)
-        name = names[self._pose_cursor]
+        self.go_to_pose(names[(self._pose_cursor + 1) % len(names)])
+
+    def go_to_pose(self, name: str) -> None:
+        """Move to the named pose as ``p`` does (smoothly when motion is on);
+        ``p`` then goes on from it."""
+        names = self.robot.pose_names
+        if name not in names:
+            self.say(f"{self.robot.name} has no pose {name!r}", error=True)
+            return
+        self._pose_cursor = names.index(name)
         self._go_to(self.robot.pose(name), f"pose {name} ({self._pose_cursor + 1}/{len(names)})")
 
     def action_readout(self) -> None:

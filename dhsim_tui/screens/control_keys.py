@@ -204,6 +204,7 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
         ("P", "save the current joints as a named pose (and in the robot file)"),
         ("m", "smooth moves to home and poses on/off; escape stops"),
         ("e", "edit the robot's D-H table"),
+        ("ctrl+p", "command palette: open, import, save, export, convert, go to a pose, views"),
         ("?", "this help"),
         ("q", "quit"),
     ]

@@ -1,4 +1,5 @@
-"""The table editor: D-H rows and robot fields, live preview, undo, open and save.
+"""The table editor: D-H rows and robot fields, live preview, undo, open (and
+import), save, export and convert.
 
 Every edit goes through :mod:`dhsim_tui.core.editing`, which returns a new
 valid robot or raises DhsimError; a rejected value is shown where it was
@@ -26,6 +27,7 @@ from textual.screen import Screen
 from textual.widgets import DataTable, Footer, Static
 
 from dhsim_tui.core import editing
+from dhsim_tui.core.convert import convert
 from dhsim_tui.core.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import FileStamp, read_stamp
@@ -42,8 +44,9 @@ from dhsim_tui.screens.editor_table import (
     joint_labels,
     joint_rows,
 )
+from dhsim_tui.screens.export_dialog import export_flow
 from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.open_robot import OpenRobot
+from dhsim_tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
 from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import is_bundled, save_flow
 from dhsim_tui.terminal import ascii_mode, shown
@@ -70,12 +73,22 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         renderer: str = "plotext",
         saved: Robot | None = None,
         stamp: FileStamp | None = None,
+        *,
+        new_text: str | None = None,
+        imported_from: Path | None = None,
+        first_edit: tuple[Robot, str] | None = None,
     ) -> None:
         """``saved`` is the robot as its file holds it (None: not saved
         anywhere); ``stamp`` what the file held when it was read (read at
-        mount when not given)."""
+        mount when not given). A robot with no file: ``new_text`` is where
+        the file it is saved to starts (an import's comments),
+        ``imported_from`` the file it was imported from. ``first_edit``:
+        (robot, message), an edit made as the editor opens (undo reverts it)."""
         super().__init__()
         self.history = editing.History(robot)
+        self.new_text = new_text
+        self.imported_from = imported_from
+        self._first_edit = first_edit
         bundled = is_bundled(path)
         self.path = None if bundled else path
         self.template = path if bundled else None
@@ -118,6 +131,11 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
                 self.stamp = None  # unreadable now: the save will say why
         self._ready = True
         self._apply_size(self.app.size.width, self.app.size.height)
+        if self._first_edit is not None:
+            robot, message = self._first_edit
+            self._first_edit = None
+            if self.history.push(robot):
+                self.say(message)
         self._redraw()
         self._joints.focus()
 
@@ -149,7 +167,9 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self._drawn_at = now
         robot = self.robot
         self._joints.show(joint_labels(robot), joint_rows(robot))
-        self._joints.border_subtitle = "* joint variable (its home value)"
+        self._joints.border_subtitle = shown(
+            "* D-H variable at home · joint value = * - offset", self.app
+        )
         if self._cursor_row is not None:
             self._joints.move_cursor(row=min(self._cursor_row, robot.dof - 1))
             self._cursor_row = None
@@ -158,6 +178,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             where = short_path(self.path, 40)
         elif self.template is not None:
             where = f"from bundled {printable(self.template.name)}"
+        elif self.imported_from is not None:
+            where = f"imported from {printable(self.imported_from.name)}, not saved"
         else:
             where = "not saved yet"
         name = printable(robot.name)
@@ -340,11 +362,13 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     # -- files -------------------------------------------------------------------
     async def save_robot(self, save_as: bool = False) -> bool:
         """Save (asking a name when needed); True once nothing is unsaved."""
+        source = self.path or self.template
         result = await save_flow(
             self.app,
             self.robot,
-            self.path or self.template,
+            source,
             self.stamp,
+            base_text=self.new_text if source is None else None,
             save_as=save_as,
             report=self.say,
         )
@@ -352,6 +376,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             return False
         self.path, self.template = result.path, None
         self.saved, self.stamp = result.robot, result.stamp
+        self.new_text = self.imported_from = None
         if result.kind == "reloaded":  # the file's content wins; the edits stay in undo
             self.history.push(result.robot)
             self.say(f"reloaded {short_path(result.path, 50)}; ctrl+z brings your edits back")
@@ -376,21 +401,57 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         return answer == "discard"
 
     @work(exclusive=True, group="modal")
-    async def action_open(self) -> None:
+    async def action_open(self, importing: bool = False) -> None:
+        """Open a robot file, or import a .urdf/.csv (``importing``: only those)."""
         if not await self.guard("opening another robot"):
             return
-        result = await self.app.push_screen_wait(OpenRobot())
-        if result is None:
+        opened = await self.app.push_screen_wait(OpenRobot(importing=importing))
+        if opened is None:
             return
-        robot, path, stamp = result
+        if opened.imported:
+            self.show_import(opened)
+            return
+        robot, path, stamp = opened.robot, opened.source, opened.stamp
         found = await offer_recovery(self.app, path, robot)  # changes kept by a crash
         self.history = editing.History(found.robot if found else robot)
         bundled = is_bundled(path)
         self.path = None if bundled else path
         self.template = path if bundled else None
         self.saved, self.stamp = robot, stamp
+        self.new_text = self.imported_from = None
         self.refresh_robot()
         self.say(f"opened {short_path(path, 50)}")
+
+    def show_import(self, opened: Opened) -> None:
+        """Edit an imported robot: it has no robot file yet, so it is unsaved
+        and ctrl+s asks for a name in robots/. The importer's notes are shown."""
+        self.history = editing.History(opened.robot)
+        self.path = self.template = None
+        self.saved, self.stamp = None, None
+        self.new_text = header_text(opened.header)
+        self.imported_from = opened.source
+        self.refresh_robot()
+        self.say(f"imported {short_path(opened.source, 40)}; not saved yet: ctrl+s saves it")
+        self.app.push_screen(ImportNotes(opened, f"ctrl+s saves it as {ROBOTS_DIR}/<name>.toml"))
+
+    @work(exclusive=True, group="modal")
+    async def action_export(self) -> None:
+        """Export the robot as it is here (unsaved edits too): URDF, CSV or JSON."""
+        await export_flow(self.app, self.robot, self.path or self.template, report=self.say)
+
+    def other_convention(self) -> str:
+        return "modified" if self.robot.convention == "standard" else "standard"
+
+    def action_convert(self) -> None:
+        """The same arm in the other D-H convention (the core's exact
+        conversion: the tool's pose is unchanged at every joint value): one
+        edit, which undo reverts."""
+        convention = self.other_convention()
+        before = self.robot.convention
+        self._attempt(
+            lambda: convert(self.robot, convention),
+            f"converted from {before} to {convention} D-H: the same arm (ctrl+z undoes)",
+        )
 
     @work(exclusive=True, group="modal")
     async def action_leave(self) -> None:

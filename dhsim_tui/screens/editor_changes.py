@@ -37,6 +37,8 @@ def _changes(before: Robot, after: Robot) -> list[str]:
         ("base height", number(before.base_height), number(after.base_height)),
         ("base z", before.base_z, after.base_z),
         ("base x", before.base_x, after.base_x),
+        ("base xyz", numbers(before.base_xyz), numbers(after.base_xyz)),
+        ("base rpy", numbers(before.base_rpy), numbers(after.base_rpy)),
         ("tool xyz", numbers(before.tool.xyz), numbers(after.tool.xyz)),
         ("tool rpy", numbers(before.tool.rpy), numbers(after.tool.rpy)),
     ):

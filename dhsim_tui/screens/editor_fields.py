@@ -52,6 +52,18 @@ async def ask_field(app: App, robot: Robot, key: str) -> Robot | None:
             "frame 0 above the floor, >= 0",
             lambda text: editing.set_base_height(robot, editing.parse_number(text, "base height")),
         )
+    elif key in ("base_xyz", "base_rpy"):
+        part = key.removeprefix("base_")
+        entry = ValueEntry(
+            FIELD_LABELS[key] + (f" ({robot.units})" if part == "xyz" else ""),
+            numbers(getattr(robot, key)),
+            "frame 0's position: x, y, z in the world"
+            if part == "xyz"
+            else "roll, pitch, yaw in degrees, after base z and base x",
+            lambda text: editing.set_base(
+                robot, **{part: editing.parse_numbers(text, 3, FIELD_LABELS[key])}
+            ),
+        )
     elif key in ("tool_xyz", "tool_rpy"):
         part = key.removeprefix("tool_")
         entry = ValueEntry(
@@ -105,7 +117,7 @@ async def ask_joint_field(
     """A new value for one D-H number of one joint: (robot, what changed)."""
     joint = robot.joints[index]
     label = f"joint {index + 1} {name}"
-    angle = name in ("theta", "alpha") or (name in ("min", "max") and joint.is_revolute)
+    angle = name in ("theta", "alpha") or (name in ("min", "max", "offset") and joint.is_revolute)
     unit = "deg" if angle else robot.units
 
     def check(text: str) -> Robot:

@@ -57,7 +57,19 @@ EDITOR_BINDINGS = [
     ),
     Binding("ctrl+y", "redo", "Redo", key_display="^y", id="edit.redo", tooltip="Redo"),
     Binding(
-        "ctrl+o", "open", "Open", key_display="^o", id="file.open", tooltip="Open a robot file"
+        "ctrl+o",
+        "open",
+        "Open",
+        key_display="^o",
+        id="file.open",
+        tooltip="Open a robot file, or import a .urdf or .csv file",
+    ),
+    Binding(
+        "x",
+        "export",
+        "Export",
+        id="file.export",
+        tooltip="Export the robot as URDF, CSV or JSON (asks the format and a file name)",
     ),
     Binding(
         "ctrl+up",
@@ -97,9 +109,11 @@ EDITOR_HELP_ROWS = [
     ("d, delete", "delete the joint or pose (asks first)"),
     ("ctrl+↑ ctrl+↓", "move the joint up or down"),
     ("ctrl+z, ctrl+y", "undo, redo (the status line says what changed)"),
-    ("ctrl+o", "open a robot"),
+    ("ctrl+o", "open a robot, or import a .urdf or .csv file (saved as a new .toml)"),
     ("ctrl+s", "save (atomic; asks if the file changed on disk since it was opened)"),
     ("S", "save as another file, robots/<name>.toml"),
+    ("x", "export as URDF, CSV or JSON (asks the format and a file name)"),
+    ("ctrl+p", "command palette: every command by name (convert to the other D-H too)"),
     ("tab", "joints table <-> robot fields and poses"),
     ("1 2 3 4", "preview: top, front, side, 3-D"),
     ("escape", "back to the simulator (asks about unsaved changes)"),

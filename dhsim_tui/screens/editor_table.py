@@ -29,6 +29,8 @@ FIELD_ROWS = (
     "base_height",
     "base_z",
     "base_x",
+    "base_xyz",
+    "base_rpy",
     "tool_xyz",
     "tool_rpy",
 )
@@ -39,11 +41,13 @@ FIELD_LABELS = {
     "base_height": "base height",
     "base_z": "base z",
     "base_x": "base x",
+    "base_xyz": "base xyz",
+    "base_rpy": "base rpy (deg)",
     "tool_xyz": "tool xyz",
     "tool_rpy": "tool rpy (deg)",
 }
 #: the joints table's columns (what editing calls them), in order
-JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "min", "max")
+JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "offset", "min", "max")
 
 
 def number(value: float) -> str:
@@ -66,6 +70,7 @@ def joint_labels(robot: Robot) -> tuple[str, ...]:
         f"d\n({unit})",
         f"a\n({unit})",
         "alpha\n(deg)",
+        f"offset\n({limits_unit(robot)})",
         f"min\n({limits_unit(robot)})",
         f"max\n({limits_unit(robot)})",
     )
@@ -89,7 +94,7 @@ def joint_rows(robot: Robot) -> list[tuple[str, tuple[Cell, ...]]]:
         theta = number(j.theta) + ("*" if j.is_revolute else "")
         d = number(j.d) + ("" if j.is_revolute else "*")
         cells = (str(i), "R" if j.is_revolute else "P", theta, d)
-        cells += (number(j.a), number(j.alpha), number(j.min), number(j.max))
+        cells += (number(j.a), number(j.alpha), number(j.offset), number(j.min), number(j.max))
         rows.append((f"joint:{i}", cells))
     return rows
 
@@ -104,6 +109,8 @@ def field_rows(robot: Robot) -> list[tuple[str, tuple[Cell, ...]]]:
         "base_height": f"{number(robot.base_height)} {robot.units}",
         "base_z": robot.base_z,
         "base_x": robot.base_x,
+        "base_xyz": f"{numbers(robot.base_xyz)} {robot.units}",
+        "base_rpy": numbers(robot.base_rpy),
         "tool_xyz": f"{numbers(robot.tool.xyz)} {robot.units}",
         "tool_rpy": numbers(robot.tool.rpy),
     }

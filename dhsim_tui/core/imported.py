@@ -1,0 +1,27 @@
+"""What an import gives: the robot, remarks for the user, and comment lines
+for the top of its robot file. A leaf shared by the URDF and CSV importers."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.model import Robot
+from dhsim_tui.core.text import printable
+
+
+@dataclass(frozen=True)
+class ImportResult:
+    """The robot, and one-line remarks for the user (what was checked, what is odd)."""
+
+    robot: Robot
+    notes: tuple[str, ...] = ()
+    #: comment lines for the top of the robot file (where it came from, joint names)
+    header: tuple[str, ...] = ()
+
+
+def check_choice(value: str, allowed: tuple[str, ...], what: str, source: str) -> None:
+    if value not in allowed:
+        raise DhsimError(
+            printable(f"{source}: {what} {value!r} is not one of {', '.join(allowed)}")
+        )
