@@ -91,3 +91,13 @@ def puma():
 @pytest.fixture
 def rng():
     return np.random.default_rng(20101217)
+
+
+@pytest.fixture
+def in_tmp(tmp_path, monkeypatch):
+    """A fresh working folder (so robots/ is a new one) and recovery folder.
+    Modules that want it for every test say ``pytestmark =
+    pytest.mark.usefixtures("in_tmp")``; some define their own."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("DHSIM_RECOVERY_DIR", str(tmp_path / "recovery"))
+    return tmp_path

@@ -21,6 +21,9 @@ from dhsim_tui.screens.dialogs import Choice, SaveGuard
 from dhsim_tui.screens.editor import EditorScreen
 from dhsim_tui.screens.open_robot import ImportNotes, OpenRobot
 from dhsim_tui.screens.value_entry import ValueEntry
+from tests.pilot_helpers import showing, until
+
+pytestmark = pytest.mark.usefixtures("in_tmp")
 
 URDFS = Path(__file__).parent / "urdfs"
 
@@ -46,32 +49,6 @@ TREE = """<?xml version="1.0"?>
   </joint>
 </robot>
 """
-
-
-@pytest.fixture(autouse=True)
-def in_tmp(tmp_path, monkeypatch):
-    """Each test works in its own folder, so robots/ is a fresh one."""
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.setenv("DHSIM_RECOVERY_DIR", str(tmp_path / "recovery"))
-    return tmp_path
-
-
-async def until(pilot, condition, what: str = "") -> None:
-    """Wait (up to 3 s) until ``condition()`` holds: a dialog a worker opens,
-    or what it does after the last answer, lands a few message rounds after
-    the key (later under load)."""
-    for _ in range(150):
-        await pilot.pause()
-        if condition():
-            return
-        await pilot.pause(0.02)
-    raise AssertionError(f"timed out waiting for {what or condition}")
-
-
-async def showing(pilot, kind: type) -> bool:
-    """True once a ``kind`` screen is in front (waiting for it, see :func:`until`)."""
-    await until(pilot, lambda: isinstance(pilot.app.screen, kind), kind.__name__)
-    return True
 
 
 def editor_app() -> DhsimApp:

@@ -14,32 +14,9 @@ from dhsim_tui.core.convert import convert
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.editor import EditorScreen
 from dhsim_tui.screens.help import HelpScreen
+from tests.pilot_helpers import showing, until
 
-
-@pytest.fixture(autouse=True)
-def in_tmp(tmp_path, monkeypatch):
-    """Each test works in its own folder, so robots/ is a fresh one."""
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.setenv("DHSIM_RECOVERY_DIR", str(tmp_path / "recovery"))
-    return tmp_path
-
-
-async def until(pilot, condition, what: str = "") -> None:
-    """Wait (up to 3 s) until ``condition()`` holds: a dialog a worker opens,
-    or what it does after the last answer, lands a few message rounds after
-    the key (later under load)."""
-    for _ in range(150):
-        await pilot.pause()
-        if condition():
-            return
-        await pilot.pause(0.02)
-    raise AssertionError(f"timed out waiting for {what or condition}")
-
-
-async def showing(pilot, kind: type) -> bool:
-    """True once a ``kind`` screen is in front (waiting for it, see :func:`until`)."""
-    await until(pilot, lambda: isinstance(pilot.app.screen, kind), kind.__name__)
-    return True
+pytestmark = pytest.mark.usefixtures("in_tmp")
 
 
 def puma_app(**options) -> DhsimApp:
