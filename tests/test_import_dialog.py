@@ -290,3 +290,19 @@ async def test_import_from_the_editors_palette_takes_only_urdf_and_csv(in_tmp):
         await pilot.press("escape")
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == before and not editor(app).dirty
+
+
+async def test_typing_on_the_list_types_the_path():
+    """ctrl+o, then a path typed at once (the list has the focus), then enter."""
+    source = URDFS / "planar_elbow.urdf"
+    app = editor_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await editor_up(pilot)
+        await pilot.press("ctrl+o")
+        assert await showing(pilot, OpenRobot)
+        assert app.screen.focused is app.screen.query_one("OptionList")  # bundled robots
+        await pilot.press(*str(source))
+        await pilot.pause()
+        assert app.screen.query_one("#path").value == str(source)  # every character
+        await pilot.press("enter")
+        assert await showing(pilot, ImportNotes)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from rich.text import Text
-from textual import work
+from textual import events, work
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
@@ -176,16 +176,26 @@ class OpenRobot(ModalScreen[Opened | None]):
             yield OptionList(
                 *(Option(Text(shown(line)), id=str(i)) for i, line in enumerate(lines))
             )
-            yield Input(placeholder=placeholder, id="path")
+            yield Input(placeholder=placeholder, id="path", select_on_focus=False)
             yield Label(Text(shown("\n".join(notes))), id="error")
             yield Label(
-                shown("↑↓ choose · enter opens · tab to the path · escape cancels"),
+                shown("↑↓ choose · enter opens · type or tab for a path · escape cancels"),
                 classes="hint",
             )
 
     def on_mount(self) -> None:
         if not self._files:  # nothing to pick (no robots/ yet): type a path
             self.query_one("#path", Input).focus()
+
+    def on_key(self, event: events.Key) -> None:
+        """Typing on the list starts a path: the key goes to the path box
+        (so ``ctrl+o`` then a path and enter opens it, as people expect)."""
+        if event.is_printable and event.character and isinstance(self.focused, OptionList):
+            path = self.query_one("#path", Input)
+            path.focus()
+            path.insert_text_at_cursor(event.character)
+            event.stop()
+            event.prevent_default()
 
     def _say(self, message: str) -> None:
         self.query_one("#error", Label).update(Text(shown(printable(message))))
