@@ -3,8 +3,9 @@
     python bench/fk.py
 
 Prints the median time of one end-effector pose, of one pose with every
-frame (what the views draw), and of a batch of 100,000 joint vectors.
-Targets: <= 10 us, <= 20 us and <= 50 ms.
+frame (what the views draw), and of a batch of 100,000 joint vectors; then of
+the world Jacobian and the manipulability (both compiled per robot, like FK).
+Targets: <= 10 us, <= 20 us, <= 50 ms, <= 6 us and <= 12 us.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import timeit
 import numpy as np
 
 from dhsim_tui.core import load_robot
+from dhsim_tui.core.jacobian import COMPILE_AFTER, jacobian, manipulability
 
 
 def median_seconds(fn, number: int, repeat: int = 15) -> float:
@@ -27,6 +29,8 @@ def main() -> None:
     q = (0.0, 30.0, 45.0, 60.0, 90.0, 0.0)
     qs = np.random.default_rng(1).uniform(robot.lower, robot.upper, size=(100_000, 6))
     kin.batch(qs)  # warm up
+    for _ in range(COMPILE_AFTER):  # past the stepwise start: the compiled paths
+        jacobian(robot, q)
     rows = [
         (
             "single pose, end effector (state)",
@@ -42,6 +46,13 @@ def main() -> None:
             20,
         ),
         ("batch of 100,000 (batch)", median_seconds(lambda: kin.batch(qs), 1, repeat=9), "ms", 50),
+        ("Jacobian (jacobian)", median_seconds(lambda: jacobian(robot, q), 20_000), "us", 6),
+        (
+            "manipulability (manipulability)",
+            median_seconds(lambda: manipulability(robot, q), 20_000),
+            "us",
+            12,
+        ),
     ]
     print(f"{'Puma 560 forward kinematics':<36}{'median':>10}   target")
     for label, seconds, unit, target in rows:

@@ -22,8 +22,10 @@ import numpy as np
 
 from dhsim_tui import __version__
 from dhsim_tui.cli_files import subparsers as files_subparsers
+from dhsim_tui.cli_workspace import subparsers as workspace_subparsers
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.ik import solve
+from dhsim_tui.core.ik_all import all_solutions
 from dhsim_tui.core.ik_reasons import angle, length
 from dhsim_tui.core.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
 from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
@@ -38,7 +40,7 @@ EXIT_INTERNAL = 1
 EXIT_INTERRUPTED = 130
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check, list, import, export and convert work without one"
+    "fk, ik, check, list, import, export, convert and workspace work without one"
 )
 #: options whose value may start with a minus sign (``--q -10,20``)
 VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
@@ -166,6 +168,8 @@ def cmd_ik(args: argparse.Namespace) -> int:
     start = robot.home
     if args.start is not None:
         start = check_joint_values(robot, parse_values(args.start, "--from"), "--from")
+    if args.all:
+        return _ik_all(robot, target, start, position_only=args.oat is None, as_json=args.json)
     result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
     if not result.success:
         raise DhsimError(f"no solution for {robot.name}: {result.reason}")
@@ -194,6 +198,40 @@ def cmd_ik(args: argparse.Namespace) -> int:
             f"residual {length(robot, result.position_error)}, "
             f"{angle(result.orientation_error)}"
         )
+    return 0
+
+
+def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) -> int:
+    """``dhsim ik --all``: every solution, nearest to the start first."""
+    found = all_solutions(robot, target, start, position_only=position_only)
+    if not found.solutions:
+        raise DhsimError(f"no solution for {robot.name}: {found.note}")
+    if as_json:
+        solutions = [
+            {"q": list(s.q), "config": s.config, "residual": s.residual} for s in found.solutions
+        ]
+        print(
+            json.dumps(
+                {
+                    "robot": robot.name,
+                    "units": robot.units,
+                    "method": found.method,
+                    "family": found.family,
+                    "solutions": solutions,
+                }
+            )
+        )
+        return 0
+    count = len(found.solutions)
+    kind = "representatives of a continuous family" if found.family else "solutions"
+    lines = [printable(robot.name), f"{count} {kind} ({found.method})"]
+    if found.note:
+        lines.append(printable(found.note))
+    for s in found.solutions:
+        q = [_round(v, 4) for v in s.q]
+        words = f"  {s.config}" if s.config else ""
+        lines.append(f"{_joints_line(robot, q)}{words}  residual {length(robot, s.residual)}")
+    print("\n".join(lines))
     return 0
 
 
@@ -328,6 +366,9 @@ def _subparsers() -> dict[str, _Parser]:
     ik.add_argument(
         "--from", dest="start", metavar="V1,V2,...", help="starting joint values; default: home"
     )
+    ik.add_argument(
+        "--all", action="store_true", help="every solution within limits, nearest first"
+    )
     ik.add_argument("--json", action="store_true", help="print one JSON object")
     ik.set_defaults(func=cmd_ik)
     edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
@@ -346,6 +387,7 @@ def _subparsers() -> dict[str, _Parser]:
         "edit": edit,
         "new": new,
         **files_subparsers(_Parser),
+        **workspace_subparsers(_Parser),
     }
 
 
@@ -354,13 +396,15 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
              [--theme dark|light|ansi]
                                  open the simulator (default: the bundled Puma 560)
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
-       dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--json]
+       dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--all] [--json]
        dhsim check ROBOT
        dhsim list
        dhsim import FILE.urdf|FILE.csv [--tip LINK] [--base LINK]
                     [--convention standard|modified] [--units mm|cm|m|in] [-o OUT.toml]
        dhsim export ROBOT --format urdf|csv|json [-o FILE]
        dhsim convert ROBOT --convention standard|modified [-o FILE.toml]
+       dhsim workspace ROBOT [--n N] [--seed S] [--json]
+                                 where the tool can go: bounding box and reach
        dhsim edit ROBOT [--ascii | --unicode]
                                  the table editor
        dhsim new [NAME] [--ascii | --unicode]

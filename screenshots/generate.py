@@ -54,6 +54,7 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
     *[(name, "puma560", (120, 36), MOVE) for name in VIEW_MODES],
     ("views-3d-maximised-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w")),
     ("views-zoomed-120x36", "puma560", (120, 36), (*MOVE, "plus", "plus")),
+    ("views-workspace-120x36", "puma560", (120, 36), (*MOVE, "W")),
     (
         "control-80x24",
         "puma560",
@@ -156,6 +157,8 @@ async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[s
         if isinstance(screen, ControlScreen):  # the footer as dhsim starts: "m Motion on"
             screen.animate = True
             screen.refresh_bindings()
+        await pilot.pause()
+        await app.workers.wait_for_complete()  # the workspace cloud is sampled in a worker
         await pilot.pause()
         app.save_screenshot(filename=f"{name}.svg", path=str(HERE))
 

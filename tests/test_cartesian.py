@@ -73,7 +73,7 @@ async def test_rows_select_and_rotations_turn_about_the_tool():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         start = app.robot.kinematics.pose(screen(app).q)
-        await pilot.press("c", "down", "down", "down", "down", "down")  # Rz
+        await pilot.press("c", "f", "down", "down", "down", "down", "down")  # tool Rz
         assert screen(app).cartesian_row == 5
         await pilot.press("right_square_bracket", "right")  # ladder 0.1, 1, 5: 5 deg
         now = app.robot.kinematics.pose(screen(app).q)

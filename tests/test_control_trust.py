@@ -277,7 +277,7 @@ CARTESIAN_FAILURES = [
     # (robot, start q or None, keys): each ends on a real failure message from the core
     ("puma560", GOOD, typed("c", value="5000")),  # X out of reach
     ("puma560", GOOD, typed("c", "down", value="-9000")),  # Y out of reach
-    ("puma560", WRIST, ("c", "down", "down", "down", "right")),  # Rx at the singularity
+    ("puma560", WRIST, ("c", "f", "down", "down", "down", "right")),  # tool Rx: singular
     ("puma560", WRIST, typed("c", "down", "down", "down", "down", value="170")),  # Ry: a limit
     ("planar2", None, ("c", "up", "right")),  # Rz: it can't turn its tool
     ("gantry", None, ("c", "down", "down", "down", "right")),  # Rx: no joint turns it

@@ -73,7 +73,7 @@ def test_fk_of_ik_returns_the_pose(name):
         reached = robot.kinematics.pose(result.q)
         assert np.linalg.norm(reached[:3, 3] - target[:3, 3]) <= 1e-6 * size
         assert np.linalg.norm(rotation_error(target[:3, :3], reached[:3, :3])) <= 1e-6
-    assert solved / count >= 0.99
+    assert solved == count  # every one: they are reachable (tests/test_ik_success.py)
 
 
 def test_position_only_ignores_orientation():

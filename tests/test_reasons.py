@@ -53,6 +53,28 @@ def test_a_position_beyond_reach_is_out_of_reach_with_the_distance():
     assert math.isclose(np.linalg.norm(np.subtract(reached, (5000, 0, 0))), result.position_error)
 
 
+@pytest.mark.parametrize("name", ["puma560", "panda", "cobra600", "stanford", "gantry"])
+@pytest.mark.parametrize("position_only", [True, False])
+def test_a_target_past_any_reach_is_out_of_reach_not_a_limit(name, position_only):
+    """Farther from frame 0 than the links laid end to end: no joint's limit
+    is to blame, however the closest configuration found happens to sit."""
+    robot, _ = load_robot(name)
+    links = (
+        sum(
+            abs(j.a) + max(abs(j.d), abs(j.min + j.offset), abs(j.max + j.offset))
+            for j in robot.joints
+        )
+        + robot.tool.length
+    )
+    target = np.eye(4)
+    target[:3, 3] = robot.kinematics.frames(robot.home)[0][:3, 3] + (3 * links, 0.0, 0.0)
+    result = solve(robot, target, robot.home, restarts=30, position_only=position_only)
+    assert not result.success
+    assert (result.failed, result.cause, result.limited) == (POSITION, OUT_OF_REACH, ())
+    assert result.reason.startswith("out of reach (closest found ")
+    robot.check_q(result.q)
+
+
 def test_a_jog_past_the_reach_says_out_of_reach():
     robot, _ = load_robot("planar2")
     q = (0.0, 0.0)  # stretched out along X

@@ -15,6 +15,7 @@ from dhsim_tui.core.ik import POSITION, IKResult, rotation_error, solve
 from dhsim_tui.core.jacobian import controllable_rows, jacobian, length_scale, normalised
 from dhsim_tui.core.model import Robot, mm_to_unit
 from dhsim_tui.core.orientation import rotx, roty, rotz
+from dhsim_tui.core.workspace import reach
 
 #: step sizes offered by ``[`` and ``]``, smallest first
 REVOLUTE_STEPS_DEG = (0.1, 1.0, 5.0, 15.0, 45.0)
@@ -63,10 +64,23 @@ def step_joint(robot: Robot, q: tuple[float, ...], index: int, delta: float) -> 
     return set_joint(robot, q, index, q[index] + delta)
 
 
-#: Cartesian rows: world X, Y, Z (robot unit), then turns about the tool's own x, y, z (deg)
+#: Cartesian rows: X, Y, Z (robot unit), then turns about x, y, z (deg), in the
+#: jogging frame: the world's axes or the tool's own (FRAMES)
 CARTESIAN_ROWS = ("X", "Y", "Z", "Rx", "Ry", "Rz")
+#: the jogging frames: WORLD moves along and turns about the world's X, Y, Z
+#: (turns about axes through the tool point, so the tool stays where it is);
+#: TOOL moves along and turns about the tool's own x, y, z (z: the approach)
+WORLD, TOOL = "world", "tool"
+FRAMES = (WORLD, TOOL)
 #: a Cartesian step that would move any revolute joint further than this is a branch flip
 MAX_JOINT_JUMP_DEG = 30.0
+
+
+def row_name(row: int, frame: str = WORLD) -> str:
+    """A row as the panel and messages name it: ``X`` ``Y`` ``Z`` ``Rx`` ``Ry``
+    ``Rz``; the tool's own axes in lower case (``x`` ``y`` ``z``) in TOOL."""
+    name = CARTESIAN_ROWS[row]
+    return name.lower() if frame == TOOL and row < 3 else name
 
 
 def cartesian_step_size(robot: Robot, row: int, level: int) -> float:
@@ -76,20 +90,28 @@ def cartesian_step_size(robot: Robot, row: int, level: int) -> float:
     return REVOLUTE_STEPS_DEG[level]
 
 
-def cartesian_target(robot: Robot, q: tuple[float, ...], row: int, delta: float):
-    """The current tool pose moved ``delta`` along world X/Y/Z or turned about
-    the tool's own x/y/z axis."""
-    return move_pose(robot.kinematics.pose(q), row, delta)
+def cartesian_target(
+    robot: Robot, q: tuple[float, ...], row: int, delta: float, frame: str = WORLD
+):
+    """The current tool pose moved ``delta`` along x/y/z or turned about x/y/z
+    of ``frame`` (see :func:`move_pose`)."""
+    return move_pose(robot.kinematics.pose(q), row, delta, frame)
 
 
-def move_pose(pose, row: int, delta: float):
-    """A copy of ``pose`` moved along world X/Y/Z (rows 0-2) or turned about
-    its own x/y/z axis (rows 3-5, degrees)."""
-    pose = pose.copy()
+def move_pose(pose, row: int, delta: float, frame: str = WORLD):
+    """A copy of ``pose`` moved ``delta`` along x/y/z (rows 0-2, robot unit)
+    or turned ``delta`` degrees about x/y/z (rows 3-5) of ``frame``: WORLD,
+    the world's axes (a turn about a world axis through the tool point: the
+    tool point stays); TOOL, the pose's own axes (z is the approach vector)."""
+    if frame not in FRAMES:
+        raise ValueError(f"frame must be one of {FRAMES}, not {frame!r}")
+    pose = np.array(pose, dtype=float)  # a copy
     if row < 3:
-        pose[row, 3] += delta
+        direction = pose[:3, row] if frame == TOOL else np.eye(3)[row]
+        pose[:3, 3] += delta * direction
     else:
-        pose[:3, :3] = pose[:3, :3] @ (rotx, roty, rotz)[row - 3](delta)
+        turn = (rotx, roty, rotz)[row - 3](delta)
+        pose[:3, :3] = pose[:3, :3] @ turn if frame == TOOL else turn @ pose[:3, :3]
     return pose
 
 
@@ -188,3 +210,61 @@ def singular_towards(robot: Robot, q, change: np.ndarray, position_only: bool) -
     jac = normalised(robot, jacobian(robot, q))
     rank = min(robot.dof, int(rows.sum()))
     return ik_reasons.lost_along(jac[rows], change[rows], rank)
+
+
+# -- IK branches: the arm's other solutions for the same tool pose (b) ------------------
+#: a solution this close to the arm's joints (on every joint: radians, or a
+#: fraction of the reach) is the configuration the arm is in
+SAME_BRANCH = 1e-3
+
+
+def branch_index(robot: Robot, solutions, q: tuple[float, ...]) -> int:
+    """Which of ``solutions`` (each with ``.q``) the arm at ``q`` is in: the
+    nearest, if it is within :data:`SAME_BRANCH` on every joint; -1 if none."""
+    scales = [
+        np.pi / 180.0 if joint.is_revolute else 1.0 / max(reach(robot), 1e-12)
+        for joint in robot.joints
+    ]
+    best, index = SAME_BRANCH, -1
+    for i, solution in enumerate(solutions):
+        gaps = (abs(a - b) * k for a, b, k in zip(solution.q, q, scales, strict=True))
+        gap = max(gaps, default=0.0)
+        if gap <= best:
+            best, index = gap, i
+    return index
+
+
+def branch_caption(found, index: int, labels: tuple[str, ...] = ()) -> str:
+    """The caption of solution ``index`` of ``found`` (an ``ik_all.Solutions``),
+    such as "branch 3/8: shoulder left, elbow down, wrist flip"; it says when it
+    is the only one, or one of a family (a redundant arm has infinitely many). Two
+    solutions with the same words differ by whole turns of some joint: the
+    later one names them (``Th6 -360°``), given the joints' ``labels``."""
+    solutions = found.solutions
+    config = solutions[index].config if 0 <= index < len(solutions) else ""
+    if config and labels:
+        config = ", ".join([config, *_turns(solutions, index, labels)])
+    if len(solutions) == 1 and not found.family:
+        return "the only solution for this pose" + (f": {config}" if config else "")
+    where = f"branch {index + 1}/{len(solutions)}"
+    if found.family:
+        where += " (one of a family)"
+    return where + (f": {config}" if config else "")
+
+
+def _turns(solutions, index: int, labels: tuple[str, ...]) -> list[str]:
+    """The whole turns solution ``index`` is away from the first solution with
+    the same configuration words (none when it is that first one)."""
+    mine = solutions[index]
+    first = next(s for s in solutions if s.config == mine.config)
+    turns = []
+    for label, a, b in zip(labels, mine.q, first.q, strict=False):
+        whole = round((a - b) / 360.0)
+        if whole and abs(a - b - 360.0 * whole) < 1.0:
+            turns.append(f"{label} {360 * whole:+d}°")
+    return turns
+
+
+def branch_goal(q: tuple[float, ...]) -> tuple[float, ...]:
+    """A solution's joints as the screen keeps them (rounded like every move)."""
+    return tuple(round(float(v), DECIMALS) for v in q)

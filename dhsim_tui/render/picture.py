@@ -9,8 +9,9 @@ import numpy as np
 
 from dhsim_tui.scene.projection import ROLES
 
-#: every role a cell can have: the scene's, then the plot's frame and ticks
-CELL_ROLES: tuple[str, ...] = (*ROLES, "axes")
+#: every role a cell can have: the scene's, then the plot's frame and ticks,
+#: then the workspace cloud drawn behind everything (``render.cloud``)
+CELL_ROLES: tuple[str, ...] = (*ROLES, "axes", "cloud")
 ROLE_INDEX = {role: i for i, role in enumerate(CELL_ROLES)}
 #: the index of an empty (or unstyled) cell
 NO_ROLE = -1

@@ -244,7 +244,8 @@ class PlotextPainter:
         for role, (xs, ys) in by_role.items():
             self.figure.plot(xs, ys, marker=ASCII_MARKS[role])
         ex, ey = scene.end_effector
-        if math.isfinite(ex) and math.isfinite(ey):
+        # only a tool on the picture: plotext turns a point far off it into inf
+        if xlim[0] <= ex <= xlim[1] and ylim[0] <= ey <= ylim[1]:
             self.figure.scatter([ex], [ey], marker=ASCII_MARKS[MARKER])
         return None
 

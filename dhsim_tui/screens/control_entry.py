@@ -7,7 +7,7 @@ from textual import work
 
 from dhsim_tui.core import editing
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.jog import CARTESIAN_ROWS
+from dhsim_tui.core.jog import TOOL, WORLD, row_name
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
@@ -31,7 +31,7 @@ def shorten_path_in(message: str, path: object) -> str:
 
 class ValueFlows:
     """Mixed into the control screen, which has ``q``, ``pose``, ``robot``,
-    ``cartesian``, ``say``, ``_move_to``, ``_jog``, ``_redraw`` and ``_interrupt``."""
+    ``cartesian``, ``frame``, ``say``, ``_move_to``, ``_jog``, ``_redraw`` and ``_interrupt``."""
 
     def action_enter_value(self) -> None:
         self._interrupt()  # now, not when the dialog's worker gets to run
@@ -66,18 +66,28 @@ class ValueFlows:
     async def _enter_cartesian(self) -> None:
         self._redraw()  # self.pose must be the pose of the current q
         row = self.cartesian_row
-        name = CARTESIAN_ROWS[row]
-        if row < 3:
-            title, value = f"{name} target ({self.robot.units})", fmt(round(self.pose.xyz[row], 4))
+        name = row_name(row, self.frame)
+        unit = self.robot.units
+        if row < 3 and self.frame == WORLD:
+            title, value = f"{name} target ({unit})", fmt(round(self.pose.xyz[row], 4))
             hint = "where the tool should go, world coordinates"
+        elif row < 3:
+            title, value = f"move along {name} ({unit})", "0"
+            hint = f"how far, along the tool's own {name[-1]} axis"
         else:
-            title, value, hint = f"{name} turn (deg)", "0", "turn the tool about its own axis"
+            title, value = f"{name} turn (deg)", "0"
+            hint = (
+                "turn the tool about its own axis"
+                if self.frame == TOOL
+                else "turn the tool about this world axis, through the tool point"
+            )
         target = await self.app.push_screen_wait(
             ValueEntry(title, value, hint, lambda text: editing.parse_number(text, name))
         )
         if target is not None:
             self._redraw()
-            self._jog(row, target - self.pose.xyz[row] if row < 3 else target)
+            absolute = row < 3 and self.frame == WORLD
+            self._jog(row, target - self.pose.xyz[row] if absolute else target)
 
     @work(exclusive=True, group="modal")
     async def action_save_pose(self) -> None:

@@ -18,7 +18,9 @@ KEYS_LEGEND = (
     "P    save pose      m    smooth motion\n"
     "tab 1-4  view       z    maximise view\n"
     "+ - 0  zoom         a d w s  orbit 3-D\n"
-    "e    edit table     ?    help   q  quit"
+    "b    IK branch      f    world/tool frame\n"
+    "W    workspace      e    edit table\n"
+    "?    help           q    quit"
 )
 #: the same in 7-bit ASCII
 KEYS_LEGEND_ASCII = (
@@ -30,7 +32,9 @@ KEYS_LEGEND_ASCII = (
     "P    save pose      m    smooth motion\n"
     "tab 1-4  view       z    maximise view\n"
     "+ - 0  zoom         a d w s  orbit 3-D\n"
-    "e    edit table     ?    help   q  quit"
+    "b    IK branch      f    world/tool frame\n"
+    "W    workspace      e    edit table\n"
+    "?    help           q    quit"
 )
 
 #: joint jogging's arrow actions, and Cartesian jogging's (check_action shows one set)
@@ -169,6 +173,40 @@ CONTROL_BINDINGS = [
     Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table"),
     Binding("question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key"),
     Binding("q", "app.quit", "Quit", id="app.quit", tooltip="Quit dhsim"),
+    # not in the footer (no room at 80 columns): help, the palette and the legend name them
+    Binding(
+        "b",
+        "next_branch",
+        "Branch",
+        show=False,
+        id="ik.next_branch",
+        tooltip="The arm's next solution (IK branch) for this tool pose: the tool stays",
+    ),
+    # f's label names the frame it switches to; Cartesian mode only
+    Binding(
+        "f",
+        "frame('tool')",
+        "Tool frame",
+        show=False,
+        id="cartesian.tool_frame",
+        tooltip="Jog in the TOOL frame: along and about the tool's own x, y, z",
+    ),
+    Binding(
+        "f",
+        "frame('world')",
+        "World frame",
+        show=False,
+        id="cartesian.world_frame",
+        tooltip="Jog in the WORLD frame: along and about the world's X, Y, Z",
+    ),
+    Binding(
+        "W",
+        "workspace",
+        "Workspace",
+        show=False,
+        id="view.workspace",
+        tooltip="Show or hide the workspace: a faint cloud of points the tool can reach",
+    ),
 ]
 
 
@@ -200,11 +238,14 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
         ("z", "maximise the selected view (again: back)"),
         ("+ - 0", "zoom in / out about the arm; 0: the whole work area"),
         ("a d, w s", "orbit the 3-D view: azimuth, elevation (15° a press)"),
-        ("c", "joint ⇄ Cartesian jogging: X, Y, Z in the world, turns about the tool"),
+        ("c", "joint ⇄ Cartesian jogging: move the tool along X, Y, Z, turn it about them"),
+        ("f", "Cartesian: along/about the world's X, Y, Z ⇄ the tool's own x, y, z (TOOL)"),
+        ("b", "the arm's next solution (IK branch) for this tool pose: the tool stays"),
+        ("W", "workspace: a faint cloud of points the tool can reach (again: off)"),
         ("P", "save the current joints as a named pose (and in the robot file)"),
-        ("m", "smooth moves to home and poses on/off; escape stops"),
+        ("m", "smooth moves to home, poses and branches on/off; escape stops"),
         ("e", "edit the robot's D-H table"),
-        ("ctrl+p", "command palette: open, import, save, export, convert, go to a pose, views"),
+        ("ctrl+p", "command palette: open, import, save, export, convert, poses, views…"),
         ("?", "this help"),
         ("q", "quit"),
     ]

@@ -2,8 +2,8 @@
 second, drawn at the screen's frame rate.
 
 Only what moves the arm stops a move where it is: a joint or Cartesian step,
-home, the next pose, typing a value, and escape. Switching the view, the
-read-out, help and the like leave it running. Whether motion is on shows in
+home, the next pose, the next IK branch, typing a value, and escape.
+Switching the view, the read-out, help and the like leave it running. Whether motion is on shows in
 the footer ("m Motion on" / "m Motion off") for as long as the screen is up.
 """
 
@@ -19,6 +19,8 @@ class SmoothMotion:
     ``set_interval`` and ``refresh_bindings``."""
 
     _animation = None
+    #: where the move under way ends (None when none is under way)
+    motion_goal: tuple[float, ...] | None = None
 
     def _go_to(self, goal: tuple[float, ...], message: str) -> None:
         """Straight to ``goal``, or a quintic move over about a second when
@@ -29,6 +31,7 @@ class SmoothMotion:
             self.q = goal
             return
         start, began = self.q, time.monotonic()
+        self.motion_goal = goal
 
         def tick() -> None:
             fraction = (time.monotonic() - began) / DURATION
@@ -43,6 +46,7 @@ class SmoothMotion:
             return False
         self._animation.stop()
         self._animation = None
+        self.motion_goal = None
         return True
 
     def _interrupt(self) -> None:
@@ -65,7 +69,7 @@ class SmoothMotion:
         self.app.animate = self.animate  # a new control screen (after the editor) keeps it
         self.refresh_bindings()
         self.say(
-            "smooth motion on: h and p move over a second; escape stops"
+            "smooth motion on: h, p and b move over a second; escape stops"
             if self.animate
-            else "smooth motion off: h and p jump"
+            else "smooth motion off: h, p and b jump"
         )

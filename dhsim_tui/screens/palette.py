@@ -24,6 +24,7 @@ from textual.command import CommandPalette, DiscoveryHit, Hit, Hits, Provider, S
 from textual.content import Content
 from textual.markup import escape
 
+from dhsim_tui.core.jog import TOOL, WORLD
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.screens.control import ControlScreen
@@ -125,7 +126,39 @@ def _control_commands(app: DhsimApp, screen: ControlScreen) -> Iterator[PaletteC
             "back to the whole work area (0)",
             lambda: screen.action_zoom(0),
         )
+    if screen.cloud_state == "off":
+        yield PaletteCommand(
+            "View: show the workspace",
+            "a faint cloud of points the tool can reach, in every view (W)",
+            screen.action_workspace,
+        )
+    else:
+        yield PaletteCommand(
+            "View: hide the workspace", "the workspace cloud off (W)", screen.action_workspace
+        )
+    yield PaletteCommand(
+        "Next IK branch",
+        "the arm's next solution for this tool pose: the tool stays (b)",
+        screen.action_next_branch,
+    )
+    frame = TOOL if screen.frame == WORLD else WORLD
+    yield PaletteCommand(
+        f"Jog in the {frame} frame",
+        (
+            "Cartesian jogging along and about the tool's own x, y, z (f)"
+            if frame == TOOL
+            else "Cartesian jogging along and about the world's X, Y, Z (f)"
+        ),
+        lambda frame=frame: _jog_in(screen, frame),
+    )
     yield PaletteCommand("Help", "every key of the simulator (?)", screen.action_help)
+
+
+def _jog_in(screen: ControlScreen, frame: str) -> None:
+    """Cartesian jogging (switched on if it is off) in ``frame``."""
+    if not screen.cartesian:
+        screen.action_cartesian()
+    screen.action_frame(frame)
 
 
 # -- the editor ---------------------------------------------------------------------

@@ -11,9 +11,11 @@ from textual.geometry import Region
 from textual.strip import Strip
 from textual.widget import Widget
 
+from dhsim_tui.render.cloud import CloudLayer
 from dhsim_tui.render.picture import NO_ROLE, Framing, Look, Picture
 from dhsim_tui.render.plotext_picture import PlotextPainter, bare_picture
 from dhsim_tui.scene import View, ViewScene
+from dhsim_tui.scene.cloud import ViewCloud
 from dhsim_tui.widgets.view_style import look_of, role_styles
 
 RENDERERS = ("plotext", "braille")
@@ -53,6 +55,8 @@ class ArmView(Widget):
         self._painter = PlotextPainter() if renderer == "plotext" else None
         self._scene: ViewScene | None = None
         self._framing: Framing | None = None
+        self._cloud: ViewCloud | None = None  # the workspace, drawn behind the arm
+        self._cloud_layer = CloudLayer()
         self._picture: Picture | None = None
         self._stale = True  # the picture does not show the latest scene
         self._strips: dict[int, Strip] = {}
@@ -76,9 +80,14 @@ class ArmView(Widget):
     def on_mount(self) -> None:
         self.border_title = caption(self.view, self.look.ascii)
 
-    def show(self, scene: ViewScene, framing: Framing) -> None:
-        """Draw this scene; repaint only the cells that differ from the last."""
-        self._scene, self._framing = scene, framing
+    @property
+    def cloud(self) -> ViewCloud | None:
+        return self._cloud
+
+    def show(self, scene: ViewScene, framing: Framing, cloud: ViewCloud | None = None) -> None:
+        """Draw this scene, over ``cloud`` if given (the workspace, faint,
+        behind everything); repaint only the cells that differ from the last."""
+        self._scene, self._framing, self._cloud = scene, framing, cloud
         self._stale = True
         if self.is_mounted and self.display and self._picture is not None:
             self._redraw()
@@ -94,9 +103,12 @@ class ArmView(Widget):
         width, height = self.size
         if self._scene is None or self._framing is None or width < 2 or height < 2:
             return None
+        look = self.look
         if self._painter is None:
-            return bare_picture(self._scene, width, height, self._framing, self.look)
-        return self._painter.draw(self._scene, width, height, self._framing, self.look)
+            picture = bare_picture(self._scene, width, height, self._framing, look)
+        else:
+            picture = self._painter.draw(self._scene, width, height, self._framing, look)
+        return self._cloud_layer.under(picture, self._cloud, look)
 
     def _redraw(self) -> None:
         old = self._picture

@@ -81,6 +81,7 @@ class PosePanel(TextPanel):
     """
 
     _titles: tuple[str, str] | None = None
+    _branch = ""
 
     def show(
         self,
@@ -89,7 +90,11 @@ class PosePanel(TextPanel):
         units: str,
         dexterity: Dexterity | None = None,
         warnings: tuple[str, ...] = (),
+        branch: str = "",
     ) -> None:
+        """``branch``: which of the arm's solutions for this tool pose it is in
+        (``b``), shown under the rest (the panel grows to fit it), or "".
+        Plain text, never markup."""
         ascii = ascii_mode(self)
         title = (READOUT_TITLES_ASCII if ascii else READOUT_TITLES)[readout]
         # a border title repaints the whole panel: set only when it changes
@@ -100,6 +105,13 @@ class PosePanel(TextPanel):
         text = pose_text(pose, readout, units, ascii)
         text.append("\n")
         text.append_text(health_text(dexterity, warnings, ascii))
+        if branch:
+            text.append("\n")
+            text.append(branch, style="bold")
+        if branch != self._branch:  # a line or two more (wrapped), or back
+            self._branch = branch
+            self.styles.height = "auto" if branch else None
+            self.refresh(layout=True)
         refresh_changed_lines(self, self._text, text)
         self._text = text
 

@@ -9,6 +9,9 @@ exactly: the ANSI-to-truecolor filter never sees an ANSI colour). Nothing
 else in the scene is red, green or blue. With an ANSI theme, plain ANSI
 colour names, so the terminal's palette decides. With NO_COLOR, letters at
 the axis tips tell the axes apart and the tool is bold and reversed.
+
+The workspace cloud, when shown, is a dark grey behind everything (dim as
+well where that grey is the floor's), and dim without colour.
 """
 
 from __future__ import annotations
@@ -30,6 +33,7 @@ PALETTES: dict[str, dict[str, str]] = {
         "floor_hit": "#ffd700",
         "grid": "#5f5f5f",
         "axes": "#9e9e9e",
+        "cloud": "#4a4a4a",
     },
     "256": {
         "x": "color(196)",
@@ -41,6 +45,7 @@ PALETTES: dict[str, dict[str, str]] = {
         "floor_hit": "color(220)",
         "grid": "color(240)",
         "axes": "color(247)",
+        "cloud": "color(238)",
     },
     # exactly rich's STANDARD_PALETTE entries 9, 10, 12, 13, 3, 8, 11, 8, 7
     "standard": {
@@ -53,6 +58,7 @@ PALETTES: dict[str, dict[str, str]] = {
         "floor_hit": "rgb(255,255,85)",
         "grid": "rgb(85,85,85)",
         "axes": "rgb(170,170,170)",
+        "cloud": "rgb(85,85,85)",
     },
     # an ANSI theme: the terminal's own palette
     "ansi": {
@@ -65,10 +71,15 @@ PALETTES: dict[str, dict[str, str]] = {
         "floor_hit": "bright_yellow",
         "grid": "bright_black",
         "axes": "white",
+        "cloud": "bright_black",
     },
 }
 #: drawn bold whatever the colours
 BOLD = {"tool", "floor_hit"}
+#: drawn dim in the palettes where their grey is the floor's (16 colours, an
+#: ANSI theme): the workspace cloud stays behind the arm and the floor
+DIM = {"cloud"}
+DIM_PALETTES = ("standard", "ansi")
 
 
 def palette_name(color_system: str | None, ansi_theme: bool) -> str:
@@ -88,13 +99,17 @@ def role_styles(color_system: str | None, *, ansi_theme: bool = False, mono: boo
             else Style(bold=True)
             if role == "floor_hit"
             else Style(dim=True)
-            if role in ("grid", "axes")
+            if role in ("grid", "axes", "cloud")
             else Style()
             for role in CELL_ROLES
         ]
-    colours = PALETTES[palette_name(color_system, ansi_theme)]
+    name = palette_name(color_system, ansi_theme)
+    colours = PALETTES[name]
+    dim = DIM if name in DIM_PALETTES else set()
     return [
-        Style(color=colours.get(role), bold=role in BOLD) if role in colours else Style()
+        Style(color=colours.get(role), bold=role in BOLD, dim=True if role in dim else None)
+        if role in colours
+        else Style()
         for role in CELL_ROLES
     ]
 

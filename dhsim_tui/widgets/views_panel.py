@@ -4,6 +4,9 @@ Narrow terminals show the selected view; from 120×36 all four share a 2×2
 grid, and ``maximise`` gives the selected one the whole panel. The three
 orthographic views share one scale (100 mm is as many columns in each),
 the seed's work area by default; ``zoom`` narrows it about the arm.
+``set_cloud`` lays a cloud of points (the workspace) faintly behind the arm
+in every view; it is projected once per cloud and orbit, and rasterised once
+per zoom and size, so a joint step costs what it did without it.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from textual.widgets import Static
 
 from dhsim_tui.render.picture import CELL_ROLES, Framing
 from dhsim_tui.scene import VIEWS, Wireframe, project
+from dhsim_tui.scene.cloud import ViewCloud, project_cloud, projection_key
 from dhsim_tui.scene.oblique import Orbit, project_oblique, view_point
 from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene, per_dot_needed
 from dhsim_tui.terminal import ascii_mode
@@ -36,8 +40,25 @@ def is_wide(width: int, height: int) -> bool:
     return width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1]
 
 
-def legend(ascii: bool, mono: bool, styles: dict[str, Style]) -> Text:
-    """One line, never wrapped: what each mark means, in the views' own styles."""
+#: the legend's entry for the workspace cloud: ASCII, mono, colour
+CLOUD_LEGEND = ("   . workspace", "   · workspace", "⢕", " workspace")
+
+
+def legend(ascii: bool, mono: bool, styles: dict[str, Style], cloud: bool = False) -> Text:
+    """One line, never wrapped: what each mark means, in the views' own styles
+    (and the workspace cloud's, when it is shown)."""
+    text = _legend(ascii, mono, styles)
+    if cloud:
+        if ascii or mono:
+            text.append(CLOUD_LEGEND[0 if ascii else 1])
+        else:
+            text.append("   ")
+            text.append(CLOUD_LEGEND[2], styles["cloud"])
+            text.append(CLOUD_LEGEND[3])
+    return text
+
+
+def _legend(ascii: bool, mono: bool, styles: dict[str, Style]) -> Text:
     if ascii:
         return Text("axes x y z   @ tool   # links   : pedestal   _ floor")
     if mono:
@@ -76,6 +97,9 @@ class ViewsPanel(Container):
         self._zoom_centre: np.ndarray | None = None  # world point zoomed about
         self._wire: Wireframe | None = None
         self._legend_width = 0
+        self._cloud: np.ndarray | None = None  # world points (n, 3), or none shown
+        self._cloud_version = 0  # a new number for every set_cloud
+        self._view_clouds: dict[str, ViewCloud] = {}  # per view key, as projected
 
     def compose(self) -> ComposeResult:
         with Container(classes="views-grid"):
@@ -92,7 +116,12 @@ class ViewsPanel(Container):
     def _show_legend(self) -> None:
         app, look = self.app, look_of(self.app)
         styles = role_styles(app.console.color_system, ansi_theme=app.current_theme.ansi)
-        text = legend(look.ascii, look.mono, dict(zip(CELL_ROLES, styles, strict=True)))
+        text = legend(
+            look.ascii,
+            look.mono,
+            dict(zip(CELL_ROLES, styles, strict=True)),
+            cloud=self._cloud is not None,
+        )
         self._legend_width = text.cell_len
         self.query_one(".legend", Static).update(text)
         self._fit_legend()
@@ -121,9 +150,46 @@ class ViewsPanel(Container):
         self._wire = wire
         scenes = [project(wire, view) for view in ORTHO_VIEWS]
         scenes.append(project_oblique(wire, self.orbit))
-        for widget, scene, framing in zip(self._views, scenes, self._framings(scenes), strict=True):
-            widget.show(scene, framing)
+        framings = self._framings(scenes)
+        for widget, scene, framing in zip(self._views, scenes, framings, strict=True):
+            widget.show(scene, framing, self._view_cloud(widget.view, wire))
         self._show_zoom()
+
+    # -- the workspace cloud ------------------------------------------------
+    @property
+    def cloud(self) -> np.ndarray | None:
+        """The points shown behind the arm (world, robot units), or None."""
+        return self._cloud
+
+    def set_cloud(self, points: np.ndarray | None) -> None:
+        """Show ``points`` (n, 3: world positions in the robot's unit, e.g.
+        ``core.workspace.sample_positions``) faintly behind the arm in every
+        view, with a legend entry; ``None`` takes them away again."""
+        if points is None:
+            cloud = None
+        else:
+            cloud = np.asarray(points, dtype=float).reshape(-1, 3)
+            cloud = cloud[np.isfinite(cloud).all(axis=1)]
+        if cloud is None and self._cloud is None:
+            return
+        self._cloud = cloud
+        self._cloud_version += 1
+        self._view_clouds.clear()
+        if self.is_mounted:
+            self._show_legend()
+        self._redraw()
+
+    def _view_cloud(self, view: View, wire: Wireframe) -> ViewCloud | None:
+        """The cloud in this view's picture plane, projected again only when
+        the cloud, the orbit (3-D) or the work area changed."""
+        if self._cloud is None:
+            return None
+        cached = self._view_clouds.get(view.key)
+        key = projection_key(view, wire.area, self.orbit, self._cloud_version)
+        if cached is None or cached.key != key:
+            cached = project_cloud(self._cloud, view, wire.area, self.orbit, self._cloud_version)
+            self._view_clouds[view.key] = cached
+        return cached
 
     def _canvas(self) -> tuple[int, int]:
         """The plot area of a view (all views are the same size)."""
