@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
-import math
 import os
 import sys
 from collections.abc import Sequence
@@ -22,17 +20,13 @@ import numpy as np
 
 from dhsim_tui import __version__
 from dhsim_tui.cli_files import subparsers as files_subparsers
+from dhsim_tui.cli_kinematics import VALUE_OPTIONS
+from dhsim_tui.cli_kinematics import subparsers as kinematics_subparsers
 from dhsim_tui.cli_workspace import subparsers as workspace_subparsers
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.ik import solve
-from dhsim_tui.core.ik_all import all_solutions
-from dhsim_tui.core.ik_reasons import angle, length
 from dhsim_tui.core.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
-from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
-from dhsim_tui.core.orientation import oat_matrix
 from dhsim_tui.core.robotfile import load_with_stamp
 from dhsim_tui.core.text import printable
-from dhsim_tui.core.validation import check_joint_values, fmt
 from dhsim_tui.terminal import original_environ, wants_ascii
 
 EXIT_USAGE = 2
@@ -42,10 +36,6 @@ NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
     "fk, ik, check, list, import, export, convert and workspace work without one"
 )
-#: options whose value may start with a minus sign (``--q -10,20``)
-VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
-#: random restarts of `dhsim ik` after the first start fails (seeded: repeatable)
-IK_RESTARTS = 30
 
 
 class UsageError(Exception):
@@ -72,167 +62,6 @@ def _glue_negative_values(argv: list[str]) -> list[str]:
         else:
             out.append(arg)
     return out
-
-
-def parse_values(text: str, option: str) -> list[float]:
-    """``"0, 30,-45"`` -> numbers, naming the bad item if one isn't a number."""
-    items = [item.strip() for item in text.split(",")]
-    values = []
-    for number, item in enumerate(items, start=1):
-        try:
-            if "_" in item:  # float() would read 1_0 as 10
-                raise ValueError
-            value = float(item)
-        except ValueError:
-            shown = printable(repr(item)) if item else "an empty value"
-            raise DhsimError(f"{option}: item {number} ({shown}) is not a number") from None
-        if not math.isfinite(value) or abs(value) > MAX_ABS:
-            raise DhsimError(
-                f"{option}: item {number} ({printable(item)}) is not a finite number "
-                f"of sane size (|value| <= {fmt(MAX_ABS)})"
-            )
-        values.append(value)
-    return values
-
-
-def joint_values(robot: Robot, q_text: str | None, pose: str | None) -> tuple[float, ...]:
-    if q_text is not None and pose is not None:
-        raise DhsimError("give either --q or --pose, not both")
-    if pose is not None:
-        return robot.pose(pose)
-    if q_text is None:
-        return robot.home
-    return check_joint_values(robot, parse_values(q_text, "--q"), "--q")
-
-
-def _round(value: float, places: int = 2) -> float:
-    return round(value, places) + 0.0  # + 0.0 turns -0.0 into 0.0
-
-
-def _table(rows: list[tuple[str, str, str, str]]) -> list[str]:
-    """Right-aligned columns 10 wide, wider when a number needs it (a column of
-    a huge robot), so neighbouring numbers never run together."""
-    width = max(10, *(len(cell) + 2 for row in rows for cell in row[:3]))
-    return [f"{a:>{width}}{b:>{width}}{c:>{width}}   {unit}".rstrip() for a, b, c, unit in rows]
-
-
-def _joints_line(robot: Robot, q: Sequence[float]) -> str:
-    return "q  " + "  ".join(f"{label} {fmt(v)}" for label, v in zip(robot.labels, q, strict=True))
-
-
-def format_fk(robot: Robot, q: Sequence[float]) -> str:
-    pose = robot.kinematics.end_effector(q)
-    places = LENGTH_DECIMALS[robot.units]
-    xyz = [f"{_round(v, places):.{places}f}" for v in pose.xyz]
-    oat = [f"{_round(v):.2f}" for v in pose.oat]
-    table = _table(
-        [("X", "Y", "Z", f"({robot.units})"), (*xyz, ""), ("O", "A", "T", "(deg)"), (*oat, "")]
-    )
-    return "\n".join([printable(robot.name), _joints_line(robot, q), *table])
-
-
-def fk_json(robot: Robot, q: Sequence[float]) -> str:
-    pose = robot.kinematics.end_effector(q)
-    return json.dumps(
-        {
-            "robot": robot.name,
-            "units": robot.units,
-            "q": list(q),
-            "xyz": list(pose.xyz),
-            "oat": list(pose.oat),
-            "rpy": list(pose.rpy),
-            "T": pose.matrix.tolist(),
-        }
-    )
-
-
-def cmd_fk(args: argparse.Namespace) -> int:
-    robot, _ = load_robot(args.robot)
-    q = joint_values(robot, args.q, args.pose)
-    print(fk_json(robot, q) if args.json else format_fk(robot, q))
-    return 0
-
-
-def cmd_ik(args: argparse.Namespace) -> int:
-    robot, _ = load_robot(args.robot)
-    xyz = parse_values(args.xyz, "--xyz")
-    if len(xyz) != 3:
-        raise DhsimError(f"--xyz: expected 3 numbers X,Y,Z, got {len(xyz)}")
-    target = np.eye(4)
-    target[:3, 3] = xyz
-    if args.oat is not None:
-        oat = parse_values(args.oat, "--oat")
-        if len(oat) != 3:
-            raise DhsimError(f"--oat: expected 3 angles O,A,T, got {len(oat)}")
-        target[:3, :3] = oat_matrix(*oat)
-    start = robot.home
-    if args.start is not None:
-        start = check_joint_values(robot, parse_values(args.start, "--from"), "--from")
-    if args.all:
-        return _ik_all(robot, target, start, position_only=args.oat is None, as_json=args.json)
-    result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
-    if not result.success:
-        raise DhsimError(f"no solution for {robot.name}: {result.reason}")
-    if not all(math.isfinite(v) for v in (*result.q, result.residual)):
-        raise DhsimError(f"no solution for {robot.name}: the solver lost precision")
-    pose = robot.kinematics.end_effector(result.q)
-    if args.json:
-        print(
-            json.dumps(
-                {
-                    "robot": robot.name,
-                    "units": robot.units,
-                    "q": list(result.q),
-                    "xyz": list(pose.xyz),
-                    "oat": list(pose.oat),
-                    "residual": result.residual,
-                    "position_error": result.position_error,
-                    "orientation_error": result.orientation_error,
-                }
-            )
-        )
-    else:
-        q = [_round(v, 4) for v in result.q]
-        print(
-            f"{printable(robot.name)}\n{_joints_line(robot, q)}\n"
-            f"residual {length(robot, result.position_error)}, "
-            f"{angle(result.orientation_error)}"
-        )
-    return 0
-
-
-def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) -> int:
-    """``dhsim ik --all``: every solution, nearest to the start first."""
-    found = all_solutions(robot, target, start, position_only=position_only)
-    if not found.solutions:
-        raise DhsimError(f"no solution for {robot.name}: {found.note}")
-    if as_json:
-        solutions = [
-            {"q": list(s.q), "config": s.config, "residual": s.residual} for s in found.solutions
-        ]
-        print(
-            json.dumps(
-                {
-                    "robot": robot.name,
-                    "units": robot.units,
-                    "method": found.method,
-                    "family": found.family,
-                    "solutions": solutions,
-                }
-            )
-        )
-        return 0
-    count = len(found.solutions)
-    kind = "representatives of a continuous family" if found.family else "solutions"
-    lines = [printable(robot.name), f"{count} {kind} ({found.method})"]
-    if found.note:
-        lines.append(printable(found.note))
-    for s in found.solutions:
-        q = [_round(v, 4) for v in s.q]
-        words = f"  {s.config}" if s.config else ""
-        lines.append(f"{_joints_line(robot, q)}{words}  residual {length(robot, s.residual)}")
-    print("\n".join(lines))
-    return 0
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -342,35 +171,11 @@ def _add_charset_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _subparsers() -> dict[str, _Parser]:
-    fk = _Parser(prog="dhsim fk", description="Print the end-effector pose (world XYZ, OAT).")
-    fk.add_argument("robot", help="a robot file or a bundled robot's name (see 'dhsim list')")
-    fk.add_argument(
-        "--q",
-        metavar="V1,V2,...",
-        help="joint values (deg or the robot's length unit); default: home",
-    )
-    fk.add_argument("--pose", metavar="NAME", help="a named pose of the robot")
-    fk.add_argument("--json", action="store_true", help="print one JSON object")
-    fk.set_defaults(func=cmd_fk)
     check = _Parser(prog="dhsim check", description="Validate a robot and summarise it.")
     check.add_argument("robot", help="a robot file or a bundled robot's name")
     check.set_defaults(func=cmd_check)
     listing = _Parser(prog="dhsim list", description="List the bundled robots.")
     listing.set_defaults(func=cmd_list)
-    ik = _Parser(
-        prog="dhsim ik", description="Joint values that reach a pose (inverse kinematics)."
-    )
-    ik.add_argument("robot", help="a robot file or a bundled robot's name")
-    ik.add_argument("--xyz", required=True, metavar="X,Y,Z", help="target position (robot unit)")
-    ik.add_argument("--oat", metavar="O,A,T", help="target orientation (deg); default: any")
-    ik.add_argument(
-        "--from", dest="start", metavar="V1,V2,...", help="starting joint values; default: home"
-    )
-    ik.add_argument(
-        "--all", action="store_true", help="every solution within limits, nearest first"
-    )
-    ik.add_argument("--json", action="store_true", help="print one JSON object")
-    ik.set_defaults(func=cmd_ik)
     edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
     edit.add_argument("robot", help="a robot file or a bundled robot's name")
     _add_charset_options(edit)
@@ -380,8 +185,7 @@ def _subparsers() -> dict[str, _Parser]:
     _add_charset_options(new)
     new.set_defaults(func=cmd_new)
     return {
-        "fk": fk,
-        "ik": ik,
+        **kinematics_subparsers(_Parser),
         "check": check,
         "list": listing,
         "edit": edit,

@@ -141,9 +141,9 @@ async def test_any_move_of_the_arm_ends_the_cycle():
 
 
 async def sampled(pilot, condition, what: str) -> None:
-    """Wait (up to 3 s) for ``condition``, looking every 20 ms: a pause that
+    """Wait (up to 10 s) for ``condition``, looking every 20 ms: a pause that
     waits for the app to be idle would wait out a whole smooth move."""
-    for _ in range(150):
+    for _ in range(500):
         await pilot.pause(0.02)
         if condition():
             return

@@ -14,6 +14,7 @@ from dhsim_tui.screens.dialogs import Choice, Confirm, SaveGuard
 from dhsim_tui.screens.editor import EditorScreen
 from dhsim_tui.screens.open_robot import OpenRobot
 from dhsim_tui.screens.value_entry import ValueEntry
+from tests.pilot_helpers import showing
 
 
 @pytest.fixture(autouse=True)
@@ -424,12 +425,12 @@ async def test_unsaved_changes_guard(key, in_tmp):
         await pilot.pause()
         await edit_cell(pilot, 0, 4, "10")
         await pilot.press(key)
-        assert isinstance(app.screen, SaveGuard)
+        assert await showing(pilot, SaveGuard)  # the guard is a worker's dialog
         await pilot.press("escape")  # stay
-        assert isinstance(app.screen, EditorScreen) and editor(app).dirty
+        assert await showing(pilot, EditorScreen) and editor(app).dirty
         await pilot.press(key, "d")  # discard
         if key == "escape":
-            assert isinstance(app.screen, ControlScreen)
+            assert await showing(pilot, ControlScreen)
             assert app.screen.robot == robot
     assert load(file) == robot
 

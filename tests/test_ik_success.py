@@ -2,7 +2,7 @@
 
 Targets are made by FK of seeded random joint values within the limits, so
 each has a solution; ``dhsim ik`` solves from home with ``restarts=30``
-(cli.IK_RESTARTS), and so do these tests. The answers are checked with the
+(cli_kinematics.IK_RESTARTS), and so do these tests. The answers are checked with the
 textbook FK of conftest.reference_frames, not with the solver's own."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from conftest import reference_frames
 from dhsim_tui.core import load_robot, reach
 from dhsim_tui.core.ik import POSITION_TOL, rotation_error, solve
 
-#: as dhsim_tui.cli.IK_RESTARTS
+#: as dhsim_tui.cli_kinematics.IK_RESTARTS
 RESTARTS = 30
 TARGETS = 500
 ARMS = ["puma560", "puma560_modified", "stanford", "irb140", "ur5", "panda"]

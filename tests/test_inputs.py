@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from pty_screen import dhsim_command
 
 import dhsim_tui.cli as cli
+import dhsim_tui.cli_kinematics as cli_kinematics
 from dhsim_tui.cli import main
 from dhsim_tui.core import DhsimError, Joint, Robot, RobotFileError, Tool, load, load_robot, loads
 from dhsim_tui.core.library import describe
@@ -550,13 +551,13 @@ def test_a_name_the_terminal_cannot_encode_is_escaped_not_a_crash(tmp_path):
 
 def test_a_solution_that_lost_precision_is_refused_not_printed(capsys, monkeypatch):
     # numpy warnings are silenced in the CLI, so a non-finite answer must be caught
-    real_solve = cli.solve
+    real_solve = cli_kinematics.solve
 
     def lossy(*args, **kwargs):
         result = real_solve(*args, **kwargs)
         return dataclasses.replace(result, q=(math.nan,) * len(result.q))
 
-    monkeypatch.setattr(cli, "solve", lossy)
+    monkeypatch.setattr(cli_kinematics, "solve", lossy)
     code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0", "--json")
     assert_one_line(code, err)
     assert out == "" and "the solver lost precision" in err

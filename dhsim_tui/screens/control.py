@@ -12,35 +12,22 @@ not once per key, and never builds a backlog.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from time import monotonic
 
-import numpy as np
 from rich.text import Text
-from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
 from textual.events import Resize
 from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
-from textual.worker import get_current_worker
 
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.jacobian import controllable_rows, dexterity, jacobian_from_frames
+from dhsim_tui.core.jacobian import dexterity, jacobian_from_frames
 from dhsim_tui.core.jog import (
-    CARTESIAN_ROWS,
     DEFAULT_STEP_LEVEL,
     REVOLUTE_STEPS_DEG,
-    TOOL,
     WORLD,
-    branch_caption,
-    branch_goal,
-    branch_index,
-    cartesian_move,
     cartesian_step_size,
-    move_pose,
-    row_name,
     set_joint,
     step_size,
 )
@@ -48,8 +35,15 @@ from dhsim_tui.core.kinematics import read_out
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
-from dhsim_tui.scene import VIEWS, build_wireframe
-from dhsim_tui.scene.oblique import Orbit
+from dhsim_tui.scene import build_wireframe
+from dhsim_tui.screens.control_branches import (
+    BRANCH_CACHE,
+    SEARCH_ERRORS,
+    BranchCycle,
+    BranchCycling,
+)
+from dhsim_tui.screens.control_cartesian import CartesianJogging
+from dhsim_tui.screens.control_cloud import CLOUD_POINTS, WorkspaceCloud
 from dhsim_tui.screens.control_entry import ValueFlows
 from dhsim_tui.screens.control_keys import (
     CARTESIAN_ACTIONS,
@@ -60,6 +54,7 @@ from dhsim_tui.screens.control_keys import (
     KEYS_LEGEND_ASCII,
     help_rows,
 )
+from dhsim_tui.screens.control_views import ViewControls
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
 from dhsim_tui.terminal import ascii_mode, shown
@@ -70,38 +65,31 @@ from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
+__all__ = [
+    "BRANCH_CACHE",
+    "CLOUD_POINTS",
+    "MIN_SIZE",
+    "SEARCH_ERRORS",
+    "TALL_FOR_BOTH",
+    "BranchCycle",
+    "ControlScreen",
+]
+
 #: below this the screen shows a message instead of a layout
 MIN_SIZE = (60, 18)
 #: Cartesian mode shows the pose panel too from this height on
 TALL_FOR_BOTH = 32
-#: how many tool poses' IK solutions (b) are kept
-BRANCH_CACHE = 8
-#: how many points the workspace cloud (W) has
-CLOUD_POINTS = 20000
-#: what can stop the search for a pose's solutions or the workspace's sampling
-#: (said in the status line, never a crash)
-SEARCH_ERRORS = (DhsimError, ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 
-@dataclass(frozen=True)
-class BranchCycle:
-    """The arm's solutions for one tool pose (``b``), and the one it is in or
-    moving to."""
-
-    found: object  # ik_all.Solutions
-    index: int
-    labels: tuple[str, ...] = ()  # the joints' labels (Th1 ..), to name whole turns
-
-    @property
-    def goal(self) -> tuple[float, ...]:
-        return branch_goal(self.found.solutions[self.index].q)
-
-    @property
-    def caption(self) -> str:
-        return branch_caption(self.found, self.index, self.labels)
-
-
-class ControlScreen(ValueFlows, SmoothMotion, Screen):
+class ControlScreen(
+    CartesianJogging,
+    BranchCycling,
+    WorkspaceCloud,
+    ViewControls,
+    ValueFlows,
+    SmoothMotion,
+    Screen,
+):
     """Joint stepping, home, poses, read-outs and the three views.
 
     | Key | Action |
@@ -283,21 +271,6 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
         self._leave_branch()
         self._invalidate()
 
-    def _leave_branch(self) -> bool:
-        """Forget the branch cycle once the arm is neither in the branch it
-        went to nor on its way there: b then starts afresh from where it is."""
-        cycle = self._branches
-        if cycle is None or cycle.goal in (self.q, self.motion_goal):
-            return False
-        self._branches = None
-        return True
-
-    def _stop_motion(self) -> bool:
-        stopped = super()._stop_motion()
-        if stopped and self._leave_branch():  # stopped on the way to a branch
-            self._show_now()
-        return stopped
-
     def watch_readout(self) -> None:
         if not self._ready:
             return
@@ -377,16 +350,6 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
     def action_select(self, delta: int) -> None:
         self.selected = (self.selected + delta) % self.robot.dof
 
-    def action_row(self, delta: int) -> None:
-        self.cartesian_row = (self.cartesian_row + delta) % len(CARTESIAN_ROWS)
-        self._update_step_caption()
-        self._show_now()
-
-    def action_jog(self, multiple: int) -> None:
-        self._interrupt()
-        row = self.cartesian_row
-        self._jog(row, multiple * cartesian_step_size(self.robot, row, self.step_level))
-
     def action_step(self, multiple: int) -> None:
         self._interrupt()
         index = self.selected
@@ -406,188 +369,6 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
             self.say("")
         if move.moved:
             self.q = move.q
-
-    def _jog(self, row: int, delta: float) -> None:
-        """Move the tool; the joints follow by inverse kinematics from where they
-        are. Steps add up on the commanded pose, not on the reached one, so a
-        run of steps stays on its line instead of collecting solver residue."""
-        base = (
-            self._commanded if self._commanded is not None else self.robot.kinematics.pose(self.q)
-        )
-        target = move_pose(base, row, delta, self.frame)
-        move = cartesian_move(self.robot, self.q, target)
-        if not move.moved:
-            self.say(f"{row_name(row, self.frame)}: {move.reason or 'no change'}", error=True)
-            return
-        self.say("")
-        self.q = move.q
-        self._commanded = target
-
-    def action_cartesian(self, _in_cartesian: int = 0) -> None:
-        self.cartesian = not self.cartesian
-        self.say(
-            f"Cartesian jogging, {self.frame.upper()} frame (f): ↑↓ axis, ←→ move the tool"
-            if self.cartesian
-            else "joint jogging"
-        )
-
-    def action_frame(self, frame: str = "") -> None:
-        """``f``: Cartesian jogging along and about the world's axes, or the
-        tool's own (``frame``: the one to switch to; either, when not given)."""
-        self.frame = frame if frame in (WORLD, TOOL) else (TOOL if self.frame == WORLD else WORLD)
-        self._cartesian_panel.border_title = CARTESIAN_TITLES[self.frame]
-        self._show_now()
-        self.refresh_bindings()
-        self.say(
-            "TOOL frame: along and about the tool's own x, y, z (z: the approach)"
-            if self.frame == TOOL
-            else "WORLD frame: along and about the world's X, Y, Z (turns about the tool point)"
-        )
-
-    # -- b: the arm's other solutions for the same tool pose -------------------------
-    def action_next_branch(self) -> None:
-        """The next of the arm's solutions for the tool's pose: the tool stays,
-        the arm takes another configuration (smoothly when motion is on). The
-        solutions are found once per pose, in a worker; pressed again, ``b``
-        goes on to the next; any other move of the arm starts afresh. Pressed
-        while they are being found (a few ms to a second), each press counts:
-        the arm then goes that many branches on."""
-        if self.finding_branches:
-            self._branch_presses += 1
-            return
-        cycle = self._branches
-        if cycle is not None and cycle.goal in (self.q, self.motion_goal):
-            self._next_branch(cycle.found, cycle.index)
-            return
-        pose = self.robot.kinematics.pose(self.q)
-        key = self._branch_key(pose)
-        found = self._branch_cache.get(key)
-        if found is not None:
-            self._branches_found(self.q, key, found, presses=1)
-            return
-        self.finding_branches = True
-        self._branch_presses = 1
-        self.say("finding the arm's solutions for this pose…")
-        self._find_branches(self.robot, self.q, pose, key)
-
-    def _branch_key(self, pose: np.ndarray) -> bytes:
-        """The tool pose, rounded: the same pose reached again finds its solutions kept."""
-        scale = max(float(np.abs(pose[:3, 3]).max()), 1.0)
-        rounded = np.round(np.concatenate([pose[:3, :3].ravel(), pose[:3, 3] / scale]), 7)
-        return (rounded + 0.0).tobytes()
-
-    @work(thread=True, exclusive=True, group="branches")
-    def _find_branches(self, robot: Robot, q: tuple[float, ...], pose, key: bytes) -> None:
-        from dhsim_tui.core.ik_all import all_solutions
-
-        # an arm with fewer joints than directions it moves in positions its tool (as a jog)
-        position_only = robot.dof < int(controllable_rows(robot).sum())
-        worker = get_current_worker()
-        try:
-            with np.errstate(all="ignore"):
-                found = all_solutions(robot, pose, q, position_only=position_only)
-        except SEARCH_ERRORS as exc:
-            if not worker.is_cancelled:
-                self.app.call_from_thread(self._branches_failed, str(exc))
-            return
-        if not worker.is_cancelled:  # (the screen went away meanwhile)
-            self.app.call_from_thread(self._branches_found, q, key, found)
-
-    def _branches_failed(self, reason: str) -> None:
-        self.finding_branches = False
-        self.say(f"no other solutions found: {reason}", error=True)
-
-    def _branches_found(
-        self, q: tuple[float, ...], key: bytes, found, presses: int | None = None
-    ) -> None:
-        """``presses``: how many times b was pressed for this (all of them
-        while the solutions were being found, when not given)."""
-        self.finding_branches = False
-        presses = self._branch_presses if presses is None else presses
-        self._branch_cache[key] = found
-        while len(self._branch_cache) > BRANCH_CACHE:
-            self._branch_cache.pop(next(iter(self._branch_cache)))
-        if q != self.q:  # the arm moved while they were being found: b again
-            return
-        if not found.solutions:
-            note = f": {found.note}" if found.note else ""
-            self.say(f"no solution found for this pose{note}", error=True)
-            return
-        self._next_branch(found, branch_index(self.robot, found.solutions, q), presses)
-
-    @staticmethod
-    def _note(found) -> str:
-        """A short caveat for the status line (the core's note is longer)."""
-        if found.method == "numerical" and not found.family:
-            return " (found numerically: one may be missing)"
-        return ""
-
-    def _next_branch(self, found, index: int, steps: int = 1) -> None:
-        """Move to the solution ``steps`` after ``index`` (-1: the arm is in
-        none of them)."""
-        count = len(found.solutions)
-        if count == 1 and index == 0:
-            self._branches = BranchCycle(found, 0, tuple(self.robot.labels))
-            self._show_now()
-            self.say(self._branches.caption + self._note(found))
-            return
-        self._stop_motion()  # (a move to the branch before: the cycle goes on)
-        cycle = BranchCycle(found, (index + steps) % count, tuple(self.robot.labels))
-        self._branches = cycle
-        self._go_to(cycle.goal, cycle.caption + self._note(found))
-        self._show_now()
-
-    # -- W: the workspace cloud ----------------------------------------------------------
-    def action_workspace(self) -> None:
-        """Show the points the tool can reach, faint behind the arm in every
-        view (sampled once, in a worker); again: hide them, or stop waiting."""
-        if self.cloud_state != "off":
-            self.cloud_state = "off"
-            self.workers.cancel_group(self, "workspace")
-            self._views.set_cloud(None)
-            self.say("workspace cloud off")
-            return
-        self.cloud_state = "computing"
-        if self._cloud_points is not None:
-            self._cloud_ready(self._cloud_points)
-            return
-        self.say("sampling the workspace… (W again: never mind)")
-        self._sample_workspace(self.robot)
-
-    @work(thread=True, exclusive=True, group="workspace")
-    def _sample_workspace(self, robot: Robot) -> None:
-        from dhsim_tui.core.workspace import position_chunks
-
-        worker = get_current_worker()
-        chunks = []
-        try:
-            with np.errstate(all="ignore"):  # sample_positions, chunk by chunk: W may stop it
-                for chunk in position_chunks(robot, CLOUD_POINTS, 0):
-                    if worker.is_cancelled:
-                        return
-                    chunks.append(chunk)
-            points = np.concatenate(chunks)
-        except SEARCH_ERRORS as exc:
-            if not worker.is_cancelled:
-                self.app.call_from_thread(self._cloud_failed, str(exc))
-            return
-        if not worker.is_cancelled:  # W again, or the screen went away
-            self.app.call_from_thread(self._cloud_ready, points)
-
-    def _cloud_failed(self, reason: str) -> None:
-        if self.cloud_state == "computing":
-            self.cloud_state = "off"
-            self.say(f"workspace not sampled: {reason}", error=True)
-
-    def _cloud_ready(self, points) -> None:
-        """The samples (kept: the joints, base and tool don't change on this
-        screen); shown unless W was pressed again meanwhile."""
-        self._cloud_points = points
-        if self.cloud_state != "computing":
-            return
-        self.cloud_state = "on"
-        self._views.set_cloud(points)
-        self.say(f"workspace: {len(points)} positions the tool can reach (W hides them)")
 
     def action_step_size(self, delta: int) -> None:
         self.step_level = max(0, min(len(REVOLUTE_STEPS_DEG) - 1, self.step_level + delta))
@@ -615,27 +396,6 @@ class ControlScreen(ValueFlows, SmoothMotion, Screen):
 
     def action_readout(self) -> None:
         self.readout = READOUTS[(READOUTS.index(self.readout) + 1) % len(READOUTS)]
-
-    def action_next_view(self) -> None:
-        self.view_index = (self.view_index + 1) % len(VIEWS)
-
-    def action_view(self, index: int) -> None:
-        self.view_index = index
-
-    def action_maximise(self) -> None:
-        self._views.toggle_maximise()
-
-    def action_zoom(self, steps: int) -> None:
-        if steps == 0:
-            self._views.reset_zoom()
-        else:
-            self._views.zoom_by(steps)
-
-    def action_orbit(self, azimuth: int, elevation: int) -> None:
-        """Turn the 3-D view (and show it, if it is hidden)."""
-        if not self._views.views[3].display or not self._views.views[3].size.area:
-            self.view_index = 3
-        self._views.orbit_by(azimuth * Orbit.STEP, elevation * Orbit.STEP)
 
     def action_edit(self) -> None:
         self.app.action_edit()  # type: ignore[attr-defined]
