@@ -37,8 +37,8 @@ from dhsim_tui.core.export import (
 )
 from dhsim_tui.core.library import bundled_names, load_robot
 from dhsim_tui.core.model import AXES, UNITS, Joint, Robot, Tool
+from dhsim_tui.core.orientation import rpy_angles as rpy_radians
 from dhsim_tui.core.text import control_character
-from dhsim_tui.core.urdf_export import rpy_radians
 from dhsim_tui.core.validation import perpendicular_axes
 
 BUNDLED = bundled_names()

@@ -22,22 +22,13 @@ from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import UNITS, Robot
 from dhsim_tui.core.urdf import TipNeeded
 from tests.robot_strategies import reference_pose
+from tests.test_urdf import CASES as URDF_CASES
 from tests.test_urdf import random_trees
 
 URDFS = Path(__file__).resolve().parent / "urdfs"
 TOL = 1e-9
-CASES = [
-    ("planar_elbow.urdf", None, None),
-    ("spherical_wrist.urdf", None, None),
-    ("tilted_first.urdf", None, None),
-    ("fixed_run.urdf", None, None),
-    ("oblique_prismatic.urdf", None, None),
-    ("range_without_zero.urdf", None, None),
-    ("continuous.urdf", None, None),
-    ("ur5.urdf", "tool0", None),
-    ("ur5.urdf", "ee_link", "base_link"),
-    ("ur5.urdf", "wrist_3_link", "upper_arm_link"),
-]
+#: the chains of tests/test_urdf.py (file, tip, base)
+CASES = URDF_CASES
 
 
 def _yourdfpy(text: str) -> yourdfpy.URDF:

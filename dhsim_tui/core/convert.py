@@ -29,7 +29,7 @@ import numpy as np
 from dhsim_tui.core.dh_extract import tool_link
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import CONVENTIONS, Robot, Tool
-from dhsim_tui.core.orientation import base_rotation, rotx, rpy_from_matrix, rpy_matrix
+from dhsim_tui.core.orientation import base_rotation, rotx, rpy_angles, rpy_matrix
 from dhsim_tui.core.units import min_length
 
 #: numbers computed from matrices keep this many significant digits, so
@@ -56,16 +56,8 @@ def transform(xyz, rpy) -> np.ndarray:
 
 def rpy_of(r: np.ndarray) -> tuple[float, float, float]:
     """Roll, pitch, yaw (degrees, tidied) that rebuild ``r`` to rounding, at
-    and near pitch ±90° too, where the usual formulas read roll and yaw from
-    entries that are all rounding noise: there yaw is set to 0 and roll read
-    from the entries that still hold it; the better rebuild wins."""
-    general = rpy_from_matrix(r)
-    pitch = general[1]
-    locked = (math.degrees(math.atan2(-r[1, 2], r[1, 1])), pitch, 0.0)
-    best = min(
-        (general, locked),
-        key=lambda rpy: float(np.abs(rpy_matrix(*rpy) - r).max()),
-    )
+    and near pitch ±90° too (:func:`~dhsim_tui.core.orientation.rpy_angles`)."""
+    best = tuple(math.degrees(v) for v in rpy_angles(r))
     tidied = tuple(tidy(v, 360.0) for v in best)
     if float(np.abs(rpy_matrix(*tidied) - r).max()) > 1e-10:
         tidied = best

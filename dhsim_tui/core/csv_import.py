@@ -26,11 +26,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from dhsim_tui.core.convert import convert
+from dhsim_tui.core.editing import parse_number
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.imported import ImportResult, check_choice
 from dhsim_tui.core.model import CONVENTIONS, UNITS, Joint, Robot, Tool, default_limits
 from dhsim_tui.core.text import printable
-from dhsim_tui.core.validation import check_number
 
 _COLUMNS = ("joint", "type", "theta", "d", "a", "alpha", "offset", "min", "max")
 _REQUIRED = ("theta", "d", "a", "alpha")
@@ -174,13 +174,11 @@ def _numbers(text: str, count: int | None, where: str) -> list[float]:
 
 
 def _number(item: str, where: str) -> float:
+    """A number as the editor reads one (finite, of sane size), named by ``where``."""
     try:
-        if "_" in item:
-            raise ValueError
-        value = float(item)
-    except ValueError:
-        raise DhsimError(printable(f"{where}: {item!r} is not a number")) from None
-    return check_number(value, where)
+        return parse_number(item, where)
+    except DhsimError as exc:
+        raise DhsimError(printable(str(exc))) from None
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,7 @@ import numpy as np
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.orientation import (
     base_transform,
+    cos_sin,
     oat_from_matrix,
     rpy_from_matrix,
     rpy_matrix,
@@ -55,14 +56,6 @@ def read_out(matrix: np.ndarray) -> EndEffector:
     return EndEffector(matrix, xyz, oat_from_matrix(r), rpy_from_matrix(r))
 
 
-def _cos_sin(deg: float) -> tuple[float, float]:
-    """cos and sin with exact zeros and ones at multiples of 90°."""
-    quarter = deg / 90.0
-    if quarter == round(quarter):
-        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
-    return (math.cos(deg * _DEG), math.sin(deg * _DEG))
-
-
 def _rotate(first: str, second: str, c: str, s: str) -> str:
     """Columns (u, v) -> (c·u + s·v, c·v - s·u): a rotation about the third axis."""
     new_u = ", ".join(f"{c}*{first}{k} + {s}*{second}{k}" for k in range(3))
@@ -76,7 +69,7 @@ def _rotate(first: str, second: str, c: str, s: str) -> str:
 
 
 def _rotate_const(first: str, second: str, deg: float) -> list[str]:
-    c, s = _cos_sin(deg)
+    c, s = cos_sin(deg)
     if (c, s) == (1.0, 0.0):
         return []
     if c == 0.0:  # ±90°: a swap with a sign
@@ -317,15 +310,15 @@ class Kinematics:
             if joint.is_revolute:
                 rot_z, d = _batch_cos_sin(variable * _DEG), joint.d
             else:
-                rot_z, d = _cos_sin(joint.theta), variable
+                rot_z, d = cos_sin(joint.theta), variable
             if not standard:
-                _batch_rotate(axes, 1, 2, _cos_sin(joint.alpha), scratch)
+                _batch_rotate(axes, 1, 2, cos_sin(joint.alpha), scratch)
                 _batch_translate(p, axes[0], joint.a, scratch)
             _batch_rotate(axes, 0, 1, rot_z, scratch)
             _batch_translate(p, axes[2], d, scratch)
             if standard:
                 _batch_translate(p, axes[0], joint.a, scratch)
-                _batch_rotate(axes, 1, 2, _cos_sin(joint.alpha), scratch)
+                _batch_rotate(axes, 1, 2, cos_sin(joint.alpha), scratch)
         for k in range(3):
             out[:3, k] = axes[k]
 

@@ -17,6 +17,30 @@ OAT_R0 = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
 SINGULAR_EPS = 1e-9
 
 
+def cos_sin(deg: float) -> tuple[float, float]:
+    """cos and sin with exact zeros and ones at multiples of 90°."""
+    quarter = deg / 90.0
+    if quarter == round(quarter):
+        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
+    rad = math.radians(deg)
+    return (math.cos(rad), math.sin(rad))
+
+
+def rpy_angles(r: np.ndarray) -> tuple[float, float, float]:
+    """Roll, pitch, yaw (radians) with R = Rz(yaw)·Ry(pitch)·Rx(roll), also at
+    pitch = ±90°: yaw is read first, then pitch and roll from Rz(-yaw)·R, so
+    whatever yaw rounding picks there, the three rebuild R to rounding."""
+    r00, r10 = float(r[0, 0]) + 0.0, float(r[1, 0]) + 0.0  # + 0.0: no -0.0
+    yaw = 0.0 if math.hypot(r00, r10) < 1e-14 else math.atan2(r10, r00)
+    c, s = math.cos(yaw), math.sin(yaw)
+    m00 = c * r00 + s * r10
+    m11 = c * float(r[1, 1]) - s * float(r[0, 1])
+    m12 = c * float(r[1, 2]) - s * float(r[0, 2])
+    pitch = math.atan2(-float(r[2, 0]), m00)
+    roll = math.atan2(-m12, m11)
+    return (roll, pitch, yaw)
+
+
 def rotx(deg: float) -> np.ndarray:
     c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])

@@ -31,6 +31,7 @@ import numpy as np
 from dhsim_tui.core.convert import convert
 from dhsim_tui.core.kinematics import robot_base
 from dhsim_tui.core.model import Joint, Robot
+from dhsim_tui.core.orientation import cos_sin, rpy_angles
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.units import UNITS
 from dhsim_tui.core.workspace import reach
@@ -52,24 +53,15 @@ LINK_RGBA = "0.55 0.6 0.7 1"
 RAIL_RGBA = "0.85 0.55 0.2 1"
 
 
-def _cos_sin(deg: float) -> tuple[float, float]:
-    """cos and sin with exact zeros and ones at multiples of 90°."""
-    quarter = deg / 90.0
-    if quarter == round(quarter):
-        return ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[round(quarter) % 4]
-    rad = math.radians(deg)
-    return (math.cos(rad), math.sin(rad))
-
-
 def _rot_x(deg: float) -> np.ndarray:
-    c, s = _cos_sin(deg)
+    c, s = cos_sin(deg)
     m = np.eye(4)
     m[1:3, 1:3] = ((c, -s), (s, c))
     return m
 
 
 def _rot_z(deg: float) -> np.ndarray:
-    c, s = _cos_sin(deg)
+    c, s = cos_sin(deg)
     m = np.eye(4)
     m[0:2, 0:2] = ((c, -s), (s, c))
     return m
@@ -83,25 +75,10 @@ def _move(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
 
 def _rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """Rz(yaw)·Ry(pitch)·Rx(roll), degrees, exact at quarter turns."""
-    cp, sp = _cos_sin(pitch)
+    cp, sp = cos_sin(pitch)
     ry = np.eye(4)
     ry[0, 0], ry[0, 2], ry[2, 0], ry[2, 2] = cp, sp, -sp, cp
     return _rot_z(yaw) @ ry @ _rot_x(roll)
-
-
-def rpy_radians(r: np.ndarray) -> tuple[float, float, float]:
-    """Roll, pitch, yaw (radians) with R = Rz(yaw)·Ry(pitch)·Rx(roll), also at
-    pitch = ±90°: yaw is read first, then pitch and roll from Rz(-yaw)·R, so
-    whatever yaw rounding picks there, the three rebuild R to rounding."""
-    r00, r10 = float(r[0, 0]) + 0.0, float(r[1, 0]) + 0.0  # + 0.0: no -0.0
-    yaw = 0.0 if math.hypot(r00, r10) < 1e-14 else math.atan2(r10, r00)
-    c, s = math.cos(yaw), math.sin(yaw)
-    m00 = c * r00 + s * r10
-    m11 = c * float(r[1, 1]) - s * float(r[0, 1])
-    m12 = c * float(r[1, 2]) - s * float(r[0, 2])
-    pitch = math.atan2(-float(r[2, 0]), m00)
-    roll = math.atan2(-m12, m11)
-    return (roll, pitch, yaw)
 
 
 def _num(value: float, noise: float = NOISE) -> str:
@@ -137,7 +114,7 @@ class _Urdf:
     def origin(self, matrix: np.ndarray) -> str:
         """``<origin>`` of a transform whose translation is in robot units."""
         xyz = _triple(self.metres(matrix[:3, 3]), self.noise)
-        rpy = _triple(rpy_radians(matrix[:3, :3]))
+        rpy = _triple(rpy_angles(matrix[:3, :3]))
         return f'<origin xyz="{xyz}" rpy="{rpy}"/>'
 
     def joint_origin(self, joint: Joint) -> np.ndarray:
