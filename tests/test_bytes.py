@@ -21,6 +21,7 @@ from dhsim_tui.sgr import compact
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointRow, slider
 from dhsim_tui.widgets.pose_panel import PosePanel, health_text
+from tests.pilot_helpers import until
 
 COLUMNS, ROWS = 24, 8
 
@@ -422,9 +423,8 @@ async def test_the_pose_panel_still_shows_every_change():
         panel = app.screen.query_one(PosePanel)
         before = str(panel.render())
         await pilot.press("right")
-        await pilot.pause(0.2)
+        await until(pilot, lambda: str(panel.render()) != before, "the pose to change")
         after = str(panel.render())
-        assert after != before
         screen_text = "\n".join(s.text for s in app.screen._compositor.render_strips())
         for line in after.splitlines():
             assert line.strip() in screen_text
@@ -450,11 +450,11 @@ async def test_ascii_mode_joint_rows_pose_and_cartesian_panels():
         text = str(pose.render())
         assert is_ascii(text) and "deg" in text and "mu" in text, text
         await pilot.press("v", "v")  # the 4x4 transform
-        await pilot.pause(0.2)
+        await until(pilot, lambda: "3x3" in str(pose.render()), "the 4x4 transform")
         assert is_ascii(str(pose.render())) and "3x3" in str(pose.render())
         assert is_ascii(pose.border_title or "")
         await pilot.press("c")  # Cartesian jogging
-        await pilot.pause(0.2)
+        await until(pilot, lambda: app.screen.query(CartesianPanel), "the Cartesian panel")
         cartesian = str(app.screen.query_one(CartesianPanel).render())
         assert is_ascii(cartesian) and "deg" in cartesian
         assert cartesian.startswith(">")

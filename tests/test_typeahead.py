@@ -17,6 +17,7 @@ from dhsim_tui.core import load_robot
 from dhsim_tui.core.robotfile import load, load_with_stamp
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.editor import EditorScreen
+from tests.pilot_helpers import until
 
 KEYS = {"enter": "\r", "ctrl+u": "\x15", "right": None, "escape": "\x1b"}
 
@@ -39,8 +40,15 @@ async def test_a_pose_name_typed_right_after_P_is_the_name_saved(tmp_path):
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.pause()
         burst(app, "right", "P", "ctrl+u", "l", "a", "b", "4", "enter", "right")
-        await pilot.pause(0.5)
-        assert isinstance(app.screen, ControlScreen)  # the dialog took enter; nothing else opened
+        await until(
+            pilot,
+            lambda: (
+                isinstance(app.screen, ControlScreen)  # the dialog took enter; nothing else opened
+                and app.screen.q[0] == 2.0  # and the step after it reached the control screen
+                and "lab4" in load(path).pose_names
+            ),
+            "the save and the last step",
+        )
     robot = load(path)
     assert "lab4" in robot.pose_names
     assert robot.pose("lab4")[0] == 1.0  # saved after the first step, before the last
@@ -56,6 +64,10 @@ async def test_a_value_typed_right_after_enter_lands_in_the_editor_cell(tmp_path
         assert isinstance(editor, EditorScreen)
         # row 1, column "a" (#, type, theta, d, a): type -14 into it at once
         burst(app, "right", "right", "right", "right", "enter", "ctrl+u", "-", "1", "4", "enter")
-        await pilot.pause(0.5)
+        await until(
+            pilot,
+            lambda: app.screen is editor and editor.robot.joints[0].a == -14.0,
+            "-14 in the cell",
+        )
         assert app.screen is editor
         assert editor.robot.joints[0].a == -14.0
