@@ -7,6 +7,7 @@ import threading
 
 import numpy as np
 import pytest
+from textual import events
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import ik_all, load_robot
@@ -150,13 +151,19 @@ async def sampled(pilot, condition, what: str) -> None:
     raise AssertionError(f"timed out waiting for {what}")
 
 
+def type_without_waiting(app, key: str) -> None:
+    """A key press that does not wait for the app to be idle (``pilot.press``
+    does: on a busy machine the 30 Hz move keeps it busy until the move ends)."""
+    app.post_message(events.Key(key, key))
+
+
 async def test_b_moves_smoothly_when_motion_is_on_and_escape_stops_it(monkeypatch):
     monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 2.0)  # slow enough for a busy machine
     app = app_for(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
         await sampled(pilot, lambda: not screen.moving and screen.q == GOOD, "the start")
-        await pilot.press("b")
+        type_without_waiting(app, "b")
         await sampled(pilot, lambda: screen.moving, "the move to start")
         goal = screen.motion_goal
         assert goal is not None and same_tool(app.robot, goal, GOOD)
@@ -165,7 +172,7 @@ async def test_b_moves_smoothly_when_motion_is_on_and_escape_stops_it(monkeypatc
         await sampled(pilot, lambda: not screen.moving, "the move to end")
         await pilot.pause()
         assert screen.q == goal and "branch 2/" in pose_panel(app)
-        await pilot.press("b")  # the next one, and stop it on the way
+        type_without_waiting(app, "b")  # the next one, and stop it on the way
         await sampled(pilot, lambda: screen.moving, "the next move")
         await pilot.press("escape")
         await pilot.pause()

@@ -69,6 +69,7 @@ from dhsim_tui.core.ik_geometry import (
     detect,
 )
 from dhsim_tui.core.ik_parallel import _three_parallel
+from dhsim_tui.core.ik_right_angle_wrist import solve as right_angle_wrist
 from dhsim_tui.core.ik_subproblems import DOUBLE_ROOT
 from dhsim_tui.core.ik_vectors import Motion, Vec, _compose
 from dhsim_tui.core.ik_wrist import _spherical
@@ -110,13 +111,17 @@ def solve(
     target: np.ndarray,
     preferred,
     fits: Callable[[int, float], bool] | None = None,
+    *,
+    generic: bool = False,
 ) -> tuple[list[Branch], int]:
     """Every closed-form solution for a 4×4 world target, and how many were
     dropped early because ``fits(joint index, joint value)`` said one of the
     first three joints cannot be within its limits (without ``fits``, limits
     are not applied). ``preferred``: joint values for the angles a singular
-    pose leaves free."""
-    branches, dropped = solve_raw(robot, geometry, target, preferred, fits)
+    pose leaves free. ``generic``: the general spherical-wrist form even where
+    the fitted frames of :mod:`~dhsim_tui.core.ik_right_angle_wrist` apply
+    (the two are compared in the tests)."""
+    branches, dropped = solve_raw(robot, geometry, target, preferred, fits, generic=generic)
     return [Branch(q, config) for q, config in branches], dropped
 
 
@@ -126,12 +131,14 @@ def solve_raw(
     target: np.ndarray,
     preferred,
     fits: Callable[[int, float], bool] | None = None,
+    *,
+    generic: bool = False,
 ) -> tuple[list[tuple[tuple[float, ...], str]], int]:
     """:func:`solve` with each solution as a plain (q, config) pair (what
     :mod:`dhsim_tui.core.ik_all` reads: no object per solution)."""
     f = np.asarray(target, dtype=float).reshape(-1).tolist()
-    rot = (f[0], f[1], f[2], f[4], f[5], f[6], f[8], f[9], f[10])
-    goal = _compose((rot, (f[3], f[7], f[11])), geometry.home_inverse)
+    if geometry.frames is not None and not generic:
+        return right_angle_wrist(geometry.frames, f, geometry.home, tuple(preferred), fits)
     home = geometry.home
     revolute = geometry.revolute
     free = tuple(
@@ -159,6 +166,8 @@ def solve_raw(
                 return False
         return True
 
+    rot = (f[0], f[1], f[2], f[4], f[5], f[6], f[8], f[9], f[10])
+    goal = _compose((rot, (f[3], f[7], f[11])), geometry.home_inverse)
     if geometry.kind == THREE_PARALLEL:
         deltas = _three_parallel(geometry, goal, free)
     else:

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from dhsim_tui.core.ik_right_angle_wrist import ArmFrames, arm_frames
 from dhsim_tui.core.ik_subproblems import _EPS, _sp1
 from dhsim_tui.core.ik_vectors import (
     Motion,
@@ -60,6 +61,9 @@ class Geometry:
     arm: tuple = ()
     #: see _planar_constants
     planar: tuple = ()
+    #: axes 2 and 3 parallel and a right-angled wrist: the fitted frames'
+    #: constants (:mod:`dhsim_tui.core.ik_right_angle_wrist`)
+    frames: ArmFrames | None = None
 
 
 def _closest(r1: Vec, w1: Vec, r2: Vec, w2: Vec) -> tuple[float, Vec]:
@@ -167,6 +171,9 @@ def _detect(robot: Robot) -> Geometry | None:
         _planar_constants(axes, points, centre if kind == SPHERICAL_PARALLEL else points[3])
         if kind != SPHERICAL_MEETING
         else (),
+        arm_frames(axes, points, centre, home_inverse, wrist_singular, size, GEOMETRY_TOL)
+        if kind == SPHERICAL_PARALLEL
+        else None,
     )
 
 

@@ -260,6 +260,15 @@ class Kinematics:
         """The end effector as 12 floats (x, y, z axes then origin): the fast path."""
         return self._call(False, q)
 
+    def state_function(self) -> Callable[[Sequence[float]], tuple[float, ...]]:
+        """:meth:`state` as the compiled function itself (compiled now if it
+        was not yet), for a loop over many joint vectors: no call count and
+        no wrapping of errors (a wrong count of values raises ValueError)."""
+        if self._calls[False] < COMPILE_AFTER:
+            self._calls[False] = COMPILE_AFTER
+            self._chains[False] = _compile(self.robot, self._tool, False)
+        return self._chains[False]
+
     def position(self, q: Sequence[float]) -> tuple[float, float, float]:
         """The end effector's world XYZ."""
         s = self._call(False, q)
