@@ -20,9 +20,10 @@ where only joint 4 + joint 6 matters) the angle the pose leaves free is
 taken from ``start``: one solution stands for the continuum.
 
 Every returned solution has been checked by forward kinematics (position
-within :data:`~dhsim_tui.core.ik_judge.POSITION_TOL` of the reach, orientation within
-:data:`~dhsim_tui.core.ik_judge.ORIENTATION_TOL` rad) and they are ordered by distance from ``start``
-(radians for revolute joints, fractions of the reach for prismatic ones).
+within :data:`~dhsim_tui.core.ik_judge.POSITION_TOL` of the reach,
+orientation within :data:`~dhsim_tui.core.ik_judge.ORIENTATION_TOL` rad)
+and they are ordered by distance from ``start`` (radians for revolute
+joints, fractions of the reach for prismatic ones).
 
 An arm with more joints than the task has directions (a Panda, or any
 six-axis arm asked for a position only) has a continuum of solutions:
