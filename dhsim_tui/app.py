@@ -16,7 +16,6 @@ from textual.drivers.linux_driver import LinuxDriver
 
 from dhsim_tui import partial_update
 from dhsim_tui.core import editing
-from dhsim_tui.core.convert import convert
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
 from dhsim_tui.core.recovery import Recovery, source_key, write_recovery
@@ -267,6 +266,8 @@ class DhsimApp(KeysInOrder):
         """The running robot in the other D-H convention: the editor opens on
         it with the conversion as its one edit (the table is the editor's
         business; ctrl+z there undoes it, escape asks to save or discard)."""
+        from dhsim_tui.core.convert import convert  # loaded when first used
+
         before = self.robot.convention
         try:
             converted = convert(self.robot, convention)

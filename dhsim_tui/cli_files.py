@@ -14,10 +14,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from dhsim_tui.core.convert import convert
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.export import EXPORT_FORMATS, export_text, write_export
-from dhsim_tui.core.importer import ImportResult, import_file
+from dhsim_tui.core.formats import EXPORT_FORMATS
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import CONVENTIONS, UNITS, Robot
 from dhsim_tui.core.robotfile import dumps, save
@@ -57,9 +55,15 @@ def _tell(lines: tuple[str, ...], to_stderr: bool) -> None:
         print(printable(line), file=sys.stderr if to_stderr else sys.stdout)
 
 
+# Each command loads its part of the core when it runs: ``dhsim`` itself
+# (the simulator) starts through this module and should not pay for them.
+
+
 def cmd_import(args: argparse.Namespace) -> int:
+    from dhsim_tui.core.importer import import_file
+
     _check_robot_output(args.output, args.force)
-    result: ImportResult = import_file(
+    result = import_file(
         args.file,
         tip=args.tip,
         base=args.base,
@@ -73,6 +77,8 @@ def cmd_import(args: argparse.Namespace) -> int:
 
 
 def cmd_export(args: argparse.Namespace) -> int:
+    from dhsim_tui.core.export import export_text, write_export
+
     robot, _ = load_robot(args.robot)
     if args.output is None:
         sys.stdout.write(export_text(robot, args.format))
@@ -83,6 +89,8 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
+    from dhsim_tui.core.convert import convert
+
     _check_robot_output(args.output, args.force)
     robot, path = load_robot(args.robot)
     converted = convert(robot, args.convention)

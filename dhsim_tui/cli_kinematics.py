@@ -16,7 +16,6 @@ import numpy as np
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.ik import solve
-from dhsim_tui.core.ik_all import all_solutions
 from dhsim_tui.core.ik_reasons import angle, length
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
@@ -159,6 +158,8 @@ def cmd_ik(args: argparse.Namespace) -> int:
 
 def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) -> int:
     """``dhsim ik --all``: every solution, nearest to the start first."""
+    from dhsim_tui.core.ik_all import all_solutions  # only for --all: not loaded at start
+
     found = all_solutions(robot, target, start, position_only=position_only)
     if not found.solutions:
         raise DhsimError(f"no solution for {robot.name}: {found.note}")

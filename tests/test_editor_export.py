@@ -8,7 +8,8 @@ from textual.command import CommandList, CommandPalette
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.export import EXPORT_FORMATS, export_text
+from dhsim_tui.core.export import export_text
+from dhsim_tui.core.formats import EXPORT_FORMATS
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.dialogs import Choice, Confirm
 from dhsim_tui.screens.editor import EditorScreen

@@ -27,14 +27,13 @@ from hypothesis import strategies as st
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.export import (
-    EXPORT_FORMATS,
-    EXPORT_SUFFIXES,
     export_text,
     to_csv,
     to_json,
     to_urdf,
     write_export,
 )
+from dhsim_tui.core.formats import EXPORT_FORMATS, EXPORT_SUFFIXES
 from dhsim_tui.core.library import bundled_names, load_robot
 from dhsim_tui.core.model import AXES, UNITS, Joint, Robot, Tool
 from dhsim_tui.core.orientation import rpy_angles as rpy_radians

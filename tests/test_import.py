@@ -16,11 +16,10 @@ import pytest
 import yourdfpy
 from hypothesis import HealthCheck, given, settings
 
-from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.errors import DhsimError, TipNeeded
 from dhsim_tui.core.importer import from_csv, from_urdf, import_file
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import UNITS, Robot
-from dhsim_tui.core.urdf import TipNeeded
 from tests.robot_strategies import reference_pose
 from tests.test_urdf import CASES as URDF_CASES
 from tests.test_urdf import random_trees

@@ -12,10 +12,9 @@ from textual.widgets import OptionList
 
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load, load_robot
-from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.errors import DhsimError, TipNeeded
 from dhsim_tui.core.export import export_text
 from dhsim_tui.core.importer import import_file
-from dhsim_tui.core.urdf import TipNeeded
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.dialogs import Choice, SaveGuard
 from dhsim_tui.screens.editor import EditorScreen

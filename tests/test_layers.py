@@ -162,3 +162,24 @@ def test_core_import_graph_has_no_cycle():
     for name in sorted(graph):
         if name not in state:
             visit(name, [name])
+
+
+def test_the_simulator_starts_without_the_importers_exporters_and_every_solution_ik():
+    """``dhsim`` loads the CLI and the app; the URDF/CSV readers, the exporters,
+    the D-H conversion and every-solution IK load when a command or key first
+    needs them (each is tested where it is used)."""
+    script = "import dhsim_tui.cli, dhsim_tui.app\nimport sys\nprint(' '.join(sorted(sys.modules)))"
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, check=True
+    ).stdout.split()
+    later = {
+        "dhsim_tui.core.importer",
+        "dhsim_tui.core.urdf",
+        "dhsim_tui.core.csv_import",
+        "dhsim_tui.core.export",
+        "dhsim_tui.core.convert",
+        "dhsim_tui.core.ik_all",
+        "xml.etree.ElementTree",
+        "csv",
+    }
+    assert not later & set(out), later & set(out)

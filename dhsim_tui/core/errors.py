@@ -12,3 +12,13 @@ class DhsimError(ValueError):
 
 class RobotFileError(DhsimError):
     """A robot file that cannot be read, parsed or validated."""
+
+
+class TipNeeded(DhsimError):
+    """A URDF's links below the base form a tree: the user must choose a tip
+    (raised by :mod:`dhsim_tui.core.urdf`; here so a dialog can catch it
+    without loading the XML reader)."""
+
+    def __init__(self, message: str, leaves: tuple[str, ...]) -> None:
+        super().__init__(message)
+        self.leaves = leaves

@@ -74,13 +74,11 @@ from pathlib import Path
 
 from dhsim_tui.core.atomicfile import file_error, remove_stale_temps, write_atomic
 from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.formats import EXPORT_FORMATS
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.urdf_export import to_urdf
 from dhsim_tui.core.validation import fmt as number_text
-
-EXPORT_FORMATS: tuple[str, ...] = ("urdf", "csv", "json")
-EXPORT_SUFFIXES: dict[str, str] = {"urdf": ".urdf", "csv": ".csv", "json": ".json"}
 
 CSV_FORMAT = "dhsim-dh-table 1"
 JSON_FORMAT = "dhsim-robot"

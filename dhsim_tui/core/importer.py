@@ -12,11 +12,11 @@ from pathlib import Path
 from dhsim_tui.core.atomicfile import read_file
 from dhsim_tui.core.csv_import import from_csv
 from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.formats import IMPORT_SUFFIXES
 from dhsim_tui.core.imported import ImportResult
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.urdf_import import from_urdf
 
-IMPORT_SUFFIXES = (".urdf", ".csv")
 #: files larger than this are refused before parsing (a URDF with meshes listed is < 1 MB)
 MAX_IMPORT_BYTES = 20_000_000
 

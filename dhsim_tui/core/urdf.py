@@ -39,7 +39,7 @@ from xml.parsers import expat
 
 import numpy as np
 
-from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.errors import DhsimError, TipNeeded
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.units import MAX_ABS
 
@@ -56,14 +56,6 @@ _KINDS = {
 _REFUSED_TYPES = ("floating", "planar")
 #: a decimal number as the URDF tools write one (no nan, inf, hex or underscores)
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-
-
-class TipNeeded(DhsimError):
-    """The links below the base form a tree: the user must choose a tip."""
-
-    def __init__(self, message: str, leaves: tuple[str, ...]) -> None:
-        super().__init__(message)
-        self.leaves = leaves
 
 
 class _Refused(Exception):

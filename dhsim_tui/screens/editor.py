@@ -27,7 +27,6 @@ from textual.screen import Screen
 from textual.widgets import DataTable, Footer, Static
 
 from dhsim_tui.core import editing
-from dhsim_tui.core.convert import convert
 from dhsim_tui.core.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import FileStamp, read_stamp
@@ -446,6 +445,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         """The same arm in the other D-H convention (the core's exact
         conversion: the tool's pose is unchanged at every joint value): one
         edit, which undo reverts."""
+        from dhsim_tui.core.convert import convert  # loaded when first used
+
         convention = self.other_convention()
         before = self.robot.convention
         self._attempt(

@@ -16,7 +16,7 @@ from pathlib import Path
 from textual.app import App
 
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.export import EXPORT_FORMATS, EXPORT_SUFFIXES, write_export
+from dhsim_tui.core.formats import EXPORT_FORMATS, EXPORT_SUFFIXES
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.screens.dialogs import Choice, Confirm, reason_of, short_path
@@ -125,6 +125,9 @@ async def export_flow(
             tell(f"not exported: cannot make {ROBOTS_DIR}/: {reason_of(exc, ROBOTS_DIR)}", True)
             return None
     try:
+        # the exporters, loaded when first used (not at every start)
+        from dhsim_tui.core.export import write_export
+
         written = write_export(robot, fmt, target, overwrite=overwrite)
     except (DhsimError, OSError, ValueError) as exc:
         tell(f"not exported: {reason_of(exc, target)} — {where}", True)

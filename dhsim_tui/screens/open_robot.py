@@ -27,13 +27,12 @@ from textual.screen import ModalScreen
 from textual.widgets import Input, Label, OptionList
 from textual.widgets.option_list import Option
 
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.importer import IMPORT_SUFFIXES, ImportResult, import_file
+from dhsim_tui.core.errors import DhsimError, TipNeeded
+from dhsim_tui.core.formats import IMPORT_SUFFIXES
 from dhsim_tui.core.library import bundled_dir, describe
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import FileStamp, load, load_with_stamp
 from dhsim_tui.core.text import printable
-from dhsim_tui.core.urdf import TipNeeded
 from dhsim_tui.screens.dialogs import DIALOG_CSS, Choice, reason_of, short_path
 from dhsim_tui.terminal import shown
 
@@ -112,6 +111,14 @@ def robot_files(
                 seen.add(_key(path))
                 files.append(path)
     return files
+
+
+def import_file(path: Path, tip: str | None = None):
+    """:func:`dhsim_tui.core.importer.import_file`, loaded when first used:
+    the XML and CSV readers would cost ~20 ms of every start."""
+    from dhsim_tui.core.importer import import_file as read
+
+    return read(path, tip=tip)
 
 
 def summary(path: Path, imports_left: int = SUMMARY_IMPORTS) -> str:
@@ -226,7 +233,7 @@ class OpenRobot(ModalScreen[Opened | None]):
 
     def _import(self, path: Path, tip: str | None = None) -> Opened | None:
         try:
-            result: ImportResult = import_file(path, tip=tip)
+            result = import_file(path, tip=tip)
         except TipNeeded as exc:
             if tip is None and exc.leaves:
                 self._import_with_tip(path, exc.leaves)
