@@ -67,6 +67,7 @@ def first_frame_and_memory(
     script = f"""
 import asyncio, resource, time
 t0 = time.perf_counter()
+import dhsim_tui.cli  # what the dhsim command loads before the app
 from dhsim_tui.core import load_robot
 from dhsim_tui.app import DhsimApp
 async def main():
