@@ -90,3 +90,27 @@ def test_frames_below_the_floor_mark_the_floor_as_hit():
     assert wire.below_floor == (1,)
     assert wire.warnings == ("below the floor: frame 1",)
     assert project(wire, VIEWS[1]).lines[0].role == "floor_hit"
+
+
+@pytest.mark.parametrize("half_length", [15.0, 640.0, 2560.0, 1e9, 1e300])
+def test_a_line_far_longer_than_the_picture_is_drawn_solid_where_it_crosses(half_length):
+    """At zoom 64 a link runs far off the picture: it was sampled at 4096
+    points over its whole length, so the part on the picture came out dotted,
+    or blank. Cut to the picture first, it is a solid row of dots."""
+    line = Polyline((-half_length, half_length), (0.1, 0.1), "link")
+    nan = float("nan")
+    scene = ViewScene(view=None, lines=(line,), end_effector=(nan, nan), bounds=(-10, 10, -10, 10))
+    raster = rasterize(scene, 40, 10, ((-10.0, 10.0), (-10.0, 10.0)))
+    drawn = [row for row in raster.lines if row.strip()]
+    assert len(drawn) == 1
+    assert all(cell != " " for cell in drawn[0]), drawn[0]  # every column has its dots
+
+
+def test_a_segment_inside_the_picture_keeps_its_exact_ends():
+    nan = float("nan")
+    line = Polyline((-3.3, 7.7), (-2.2, 4.4), "link")
+    scene = ViewScene(view=None, lines=(line,), end_effector=(nan, nan), bounds=(-10, 10, -10, 10))
+    raster = rasterize(scene, 40, 10, ((-10.0, 10.0), (-10.0, 10.0)))
+    cols = [i for row in raster.lines for i, cell in enumerate(row) if cell != " "]
+    # -3.3 and 7.7 on a 40-cell row from -10 to 10 (two dots a cell): cells 13..35
+    assert min(cols) == 13 and max(cols) == 35
