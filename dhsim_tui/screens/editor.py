@@ -200,10 +200,22 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             self.refresh_bindings()
 
     def say(self, message: str, error: bool = False) -> None:
+        text = shown(printable(message), self.app)  # user text: escaped, never markup
         status = self.query_one("#editor-status", Static)
         if status.has_class("-error") != error:
             status.set_class(error, "-error")
-        status.update(Text(shown(printable(message), self.app)))  # user text: escaped, never markup
+        elif str(status.content) == text:
+            return  # the same words again (a burst of one key): nothing to redraw
+        # a new layout only when the line takes another height (min 2, max 6
+        # rows): a layout pass per key was most of a burst's cost
+        width = status.content_region.width
+        old = self._status_height(str(status.content), width)
+        status.update(Text(text), layout=not width or old != self._status_height(text, width))
+
+    def _status_height(self, text: str, width: int) -> int:
+        """The status line's rows for ``text`` at ``width`` (its CSS: 2 to 6)."""
+        rows = len(Text(text).wrap(self.app.console, width)) if width else 0
+        return min(max(rows, 2), 6)
 
     def _apply(self, robot: Robot, message: str, cursor_row: int | None = None) -> None:
         if self.history.push(robot):
