@@ -1,8 +1,10 @@
 """What the Pilot tests of the dialogs share: waiting for a worker's dialog
-(or what follows its last answer) to land. Their fresh working folder is the
-``in_tmp`` fixture of tests/conftest.py."""
+(or what follows its last answer) to land, and reading the composed screen.
+Their fresh working folder is the ``in_tmp`` fixture of tests/conftest.py."""
 
 from __future__ import annotations
+
+from rich.cells import get_character_cell_size
 
 
 async def until(pilot, condition, what: str = "") -> None:
@@ -21,3 +23,18 @@ async def showing(pilot, kind: type) -> bool:
     """True once a ``kind`` screen is in front (waiting for it, see :func:`until`)."""
     await until(pilot, lambda: isinstance(pilot.app.screen, kind), kind.__name__)
     return True
+
+
+def non_ascii_outside_views(app) -> list[str]:
+    """Non-ASCII cells on the composed screen, except in the arm views."""
+    views = [
+        view.region for screen in app.screen_stack for view in screen.query(".view") if view.region
+    ]
+    found = []
+    for y, strip in enumerate(app.screen._compositor.render_strips()):
+        x = 0
+        for char in strip.text:
+            if not char.isascii() and not any(r.contains(x, y) for r in views):
+                found.append(f"{char!r} at {x},{y}")
+            x += get_character_cell_size(char)
+    return found

@@ -36,6 +36,7 @@ from dhsim_tui.terminal import (
     to_ascii,
     wants_ascii,
 )
+from tests.pilot_helpers import non_ascii_outside_views
 
 # -- which mode --------------------------------------------------------------------
 
@@ -260,53 +261,38 @@ def test_words_at_the_source():
 # -- the screens ---------------------------------------------------------------------
 
 
-def _non_ascii_outside_views(app) -> list[str]:
-    """Non-ASCII cells on the composed screen, except in the arm views."""
-    views = [
-        view.region for screen in app.screen_stack for view in screen.query(".view") if view.region
-    ]
-    found = []
-    for y, strip in enumerate(app.screen._compositor.render_strips()):
-        x = 0
-        for char in strip.text:
-            if not char.isascii() and not any(r.contains(x, y) for r in views):
-                found.append(f"{char!r} at {x},{y}")
-            x += get_character_cell_size(char)
-    return found
-
-
 async def test_the_screens_show_only_ascii_outside_the_views():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, ascii=True)
     async with app.run_test(size=(80, 24), notifications=True) as pilot:
         await pilot.press("right")
         await pilot.pause()
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         footer = app.screen._compositor.render_strips()[-1].text
         assert "^/v Joint" in footer and "q Quit" in footer  # fits 80 columns
         await pilot.press("enter")  # a value entry: its box and its input's
         await pilot.pause()
         assert isinstance(app.screen, ValueEntry)
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         await pilot.press("escape")
         await pilot.press("question_mark")
         await pilot.pause()
         assert isinstance(app.screen, HelpScreen)
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         await pilot.press("escape", "e")
         await pilot.pause()
         assert isinstance(app.screen, EditorScreen)
         await pilot.press("t")  # unsaved: the title's mark
         await pilot.pause()
         assert " * " in app.screen._compositor.render_strips()[0].text
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         await pilot.press("tab", "down", "enter")  # a choice (units)
         await pilot.pause()
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         await pilot.press("escape", "escape")  # leaving asks: save, discard, stay
         await pilot.pause()
         assert isinstance(app.screen, SaveGuard)
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
 
 
 async def test_ascii_scrollbars_have_no_partial_blocks():

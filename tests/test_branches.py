@@ -211,7 +211,8 @@ async def test_a_planar_arm_flips_its_elbow_with_the_tool_in_place():
         assert np.allclose(position(screen.q), position((30.0, 60.0)), atol=1e-6)
 
 
-async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
+def held_search(monkeypatch) -> threading.Event:
+    """Make the search for solutions wait (up to 5 s) until the returned event is set."""
     release = threading.Event()
     real = ik_all.all_solutions
 
@@ -220,6 +221,11 @@ async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
         return real(*args, **kwargs)
 
     monkeypatch.setattr(ik_all, "all_solutions", slow)
+    return release
+
+
+async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
+    release = held_search(monkeypatch)
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
@@ -239,14 +245,7 @@ async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
 
 
 async def test_an_arm_moved_during_the_search_stays_where_it_was_put(monkeypatch):
-    release = threading.Event()
-    real = ik_all.all_solutions
-
-    def slow(*args, **kwargs):
-        release.wait(5)
-        return real(*args, **kwargs)
-
-    monkeypatch.setattr(ik_all, "all_solutions", slow)
+    release = held_search(monkeypatch)
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)

@@ -5,7 +5,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
-from rich.cells import get_character_cell_size
 from textual.command import CommandInput, CommandList, CommandPalette, SearchIcon
 
 from dhsim_tui.app import DhsimApp
@@ -14,7 +13,7 @@ from dhsim_tui.core.convert import convert
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.editor import EditorScreen
 from dhsim_tui.screens.help import HelpScreen
-from tests.pilot_helpers import showing, until
+from tests.pilot_helpers import non_ascii_outside_views, showing, until
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
@@ -228,20 +227,6 @@ async def test_a_pose_name_is_shown_as_text_not_markup():
         assert await showing(pilot, ControlScreen)
 
 
-def _non_ascii_outside_views(app) -> list[str]:
-    views = [
-        view.region for screen in app.screen_stack for view in screen.query(".view") if view.region
-    ]
-    found = []
-    for y, strip in enumerate(app.screen._compositor.render_strips()):
-        x = 0
-        for char in strip.text:
-            if not char.isascii() and not any(r.contains(x, y) for r in views):
-                found.append(f"{char!r} at {x},{y}")
-            x += get_character_cell_size(char)
-    return found
-
-
 @pytest.mark.parametrize("start", ["control", "edit"])
 async def test_the_palette_is_ascii_in_ascii_mode(start):
     app = puma_app(ascii=True, start=start)
@@ -251,7 +236,7 @@ async def test_the_palette_is_ascii_in_ascii_mode(start):
         assert "Open a robot..." in names and "Export..." in names
         assert app.screen.query_one(SearchIcon).icon == ">"
         await pilot.pause()
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []
         await pilot.press(*"pose")
         await pilot.pause(0.3)
-        assert _non_ascii_outside_views(app) == []
+        assert non_ascii_outside_views(app) == []

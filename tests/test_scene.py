@@ -8,6 +8,7 @@ import pytest
 
 from dhsim_tui.core import Joint, Robot, load_robot, reach
 from dhsim_tui.scene import VIEWS, build_wireframe, equal_scale_limits, project
+from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import Polyline, ViewScene
 from dhsim_tui.scene.raster import rasterize
 
@@ -114,3 +115,17 @@ def test_a_segment_inside_the_picture_keeps_its_exact_ends():
     cols = [i for row in raster.lines for i, cell in enumerate(row) if cell != " "]
     # -3.3 and 7.7 on a 40-cell row from -10 to 10 (two dots a cell): cells 13..35
     assert min(cols) == 13 and max(cols) == 35
+
+
+def test_cut_segments_lie_in_the_rectangle_even_from_astronomically_far_ends():
+    """(-2.2e54, -664) to (1e12, -1.5): t rounds to 1 at the far side and
+    x0 + t dx loses every digit; the cut ends still lie on the picture."""
+    x0, x1 = np.array([-2.1598715963246474e54, 0.0]), np.array([1e12, 1e300])
+    y0, y1 = np.array([-664.3337447860113, -1.5]), np.array([-1.5, 1e300])
+    a, b, c, d, shows = clip_segments(x0, x1, y0, y1, (-1200.0, 1200.0), (-500.0, 1200.0))
+    assert shows.tolist() == [True, True]
+    assert np.abs(np.concatenate([a, b])).max() <= 1200.0
+    assert np.concatenate([c, d]).min() >= -500.0 and np.concatenate([c, d]).max() <= 1200.0
+    # an end inside keeps its exact value
+    inside = clip_segments(*(np.array([v]) for v in (0.1, 0.7, 0.2, 0.3)), (0.0, 1.0), (0.0, 1.0))
+    assert [float(v[0]) for v in inside[:4]] == [0.1, 0.7, 0.2, 0.3]

@@ -167,7 +167,7 @@ def _finish(judge: Judge, found: list, start, method: str, family: bool, note: s
 
 def _analytic(robot: Robot, geometry, target: np.ndarray, start) -> Solutions:
     judge = Judge(robot, target, False)
-    branches, outside = ik_analytic.solve_raw(robot, geometry, target, start, judge.fits)
+    branches, outside = ik_analytic.solve(robot, geometry, target, start, judge.fits)
     found = []
     nearest_of, errors_of = judge.nearest, judge.errors
     polish_position = POLISH_ABOVE * judge.scale

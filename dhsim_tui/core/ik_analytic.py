@@ -29,7 +29,7 @@ The code: :mod:`~dhsim_tui.core.ik_geometry` detects the geometry,
 the two closed forms, built from :mod:`~dhsim_tui.core.ik_subproblems`,
 :mod:`~dhsim_tui.core.ik_planar` and :mod:`~dhsim_tui.core.ik_vectors`;
 :mod:`~dhsim_tui.core.ik_labels` words each solution. This module is the
-entry point: :func:`detect`, :func:`solve`, :func:`solve_raw`.
+entry point: :func:`detect` and :func:`solve`.
 
 
 Labels (the words of ``config``), each defined from the geometry so the two
@@ -55,7 +55,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -83,28 +82,17 @@ __all__ = [
     "SPHERICAL_MEETING",
     "SPHERICAL_PARALLEL",
     "THREE_PARALLEL",
-    "Branch",
     "Geometry",
     "Motion",
     "Vec",
     "detect",
     "solve",
-    "solve_raw",
 ]
 
 _RAD = 180.0 / math.pi
 
 
 # -- solving -------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Branch:
-    """One closed-form solution: joint values (deg / robot units, revolute ones
-    within half a turn of home) and its configuration words."""
-
-    q: tuple[float, ...]
-    config: str
-
-
 def solve(
     robot: Robot,
     geometry: Geometry,
@@ -113,29 +101,16 @@ def solve(
     fits: Callable[[int, float], bool] | None = None,
     *,
     generic: bool = False,
-) -> tuple[list[Branch], int]:
-    """Every closed-form solution for a 4×4 world target, and how many were
-    dropped early because ``fits(joint index, joint value)`` said one of the
-    first three joints cannot be within its limits (without ``fits``, limits
-    are not applied). ``preferred``: joint values for the angles a singular
-    pose leaves free. ``generic``: the general spherical-wrist form even where
-    the fitted frames of :mod:`~dhsim_tui.core.ik_right_angle_wrist` apply
-    (the two are compared in the tests)."""
-    branches, dropped = solve_raw(robot, geometry, target, preferred, fits, generic=generic)
-    return [Branch(q, config) for q, config in branches], dropped
-
-
-def solve_raw(
-    robot: Robot,
-    geometry: Geometry,
-    target: np.ndarray,
-    preferred,
-    fits: Callable[[int, float], bool] | None = None,
-    *,
-    generic: bool = False,
 ) -> tuple[list[tuple[tuple[float, ...], str]], int]:
-    """:func:`solve` with each solution as a plain (q, config) pair (what
-    :mod:`dhsim_tui.core.ik_all` reads: no object per solution)."""
+    """Every closed-form solution for a 4×4 world target, as (joint values,
+    configuration words) pairs — deg / robot units, revolute joints within
+    half a turn of home — and how many were dropped early because
+    ``fits(joint index, joint value)`` said one of the first three joints
+    cannot be within its limits (without ``fits``, limits are not applied).
+    ``preferred``: joint values for the angles a singular pose leaves free.
+    ``generic``: the general spherical-wrist form even where the fitted
+    frames of :mod:`~dhsim_tui.core.ik_right_angle_wrist` apply (the two are
+    compared in the tests)."""
     f = np.asarray(target, dtype=float).reshape(-1).tolist()
     if geometry.frames is not None and not generic:
         return right_angle_wrist(geometry.frames, f, geometry.home, tuple(preferred), fits)

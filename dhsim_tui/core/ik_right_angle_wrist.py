@@ -18,8 +18,8 @@ arithmetic:
   axis 4 about axis 5 at home, folded into N), so each arm solution gives its
   two wrist solutions with three ``atan2`` each.
 
-Joint values come back as turns (radians) from home, as
-:func:`dhsim_tui.core.ik_analytic.solve_raw` expects.
+Joint values come back as :func:`dhsim_tui.core.ik_analytic.solve` gives
+them: in degrees, within half a turn of home.
 """
 
 from __future__ import annotations

@@ -35,6 +35,7 @@ from dhsim_tui.render.picture import (
     Picture,
     blank,
 )
+from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import ViewScene, limits_at
 from dhsim_tui.scene.raster import MARKER, rasterize
 
@@ -88,40 +89,21 @@ def _finite(values) -> list[float | None]:
 
 
 def _clip(xs: np.ndarray, ys: np.ndarray, xlim, ylim) -> tuple[list, list]:
-    """The polyline's segments cut to the limits (Liang–Barsky), as points
-    with ``None`` between strokes: plotext then never walks a line that runs
-    far off the picture, and gets no NaN."""
+    """The polyline's segments cut to the limits, as points with ``None``
+    between strokes: plotext then never walks a line that runs far off the
+    picture, and gets no NaN."""
+    xs, ys = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)
+    x0, x1, y0, y1, shows = clip_segments(xs[:-1], xs[1:], ys[:-1], ys[1:], xlim, ylim)
     out_x: list[float | None] = []
     out_y: list[float | None] = []
-    for x0, y0, x1, y1 in zip(xs[:-1], ys[:-1], xs[1:], ys[1:], strict=True):
-        if not (
-            math.isfinite(x0) and math.isfinite(y0) and math.isfinite(x1) and math.isfinite(y1)
-        ):
-            continue
-        t0, t1 = 0.0, 1.0
-        dx, dy = x1 - x0, y1 - y0
-        for p, q in (
-            (-dx, x0 - xlim[0]),
-            (dx, xlim[1] - x0),
-            (-dy, y0 - ylim[0]),
-            (dy, ylim[1] - y0),
-        ):
-            if p == 0:
-                if q < 0:
-                    t0, t1 = 1.0, 0.0
-                continue
-            t = q / p
-            if p < 0:
-                t0 = max(t0, t)
-            else:
-                t1 = min(t1, t)
-        if t0 > t1:
-            continue
+    for a, b, c, d in zip(
+        x0[shows].tolist(), x1[shows].tolist(), y0[shows].tolist(), y1[shows].tolist(), strict=True
+    ):
         if out_x:
             out_x.append(None)
             out_y.append(None)
-        out_x += [float(x0 + t0 * dx), float(x0 + t1 * dx)]
-        out_y += [float(y0 + t0 * dy), float(y0 + t1 * dy)]
+        out_x += [a, b]
+        out_y += [c, d]
     return out_x, out_y
 
 

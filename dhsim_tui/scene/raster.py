@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import ViewScene, equal_scale_limits
 
 #: bit of each dot in a braille cell, indexed [dot row][dot column]
@@ -45,41 +46,21 @@ class Raster:
 _FAR = 1e12
 
 
-def _clip_segments(x0, x1, y0, y1, nx: int, ny: int) -> tuple[np.ndarray, ...]:
-    """Segments cut to the picture (Liang–Barsky, vectorised; a dot's margin
-    round it): a link that runs far off the picture at high zoom is sampled
-    only where it shows. Returns the cut end points and which segments show."""
-    dx, dy = x1 - x0, y1 - y0
-    t0, t1 = np.zeros_like(x0), np.ones_like(x0)
-    shows = np.ones(x0.shape, dtype=bool)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for p, q in ((-dx, x0 + 1.0), (dx, nx - x0), (-dy, y0 + 1.0), (dy, ny - y0)):
-            shows &= (p != 0) | (q >= 0)  # parallel to this edge and outside it
-            t = q / p
-            t0 = np.where(p < 0, np.maximum(t0, t), t0)
-            t1 = np.where(p > 0, np.minimum(t1, t), t1)
-    shows &= t0 <= t1
-    cut0, cut1 = t0 > 0.0, t1 < 1.0  # an end inside keeps its exact value
-    return (
-        np.where(cut0, x0 + t0 * dx, x0),
-        np.where(cut1, x0 + t1 * dx, x1),
-        np.where(cut0, y0 + t0 * dy, y0),
-        np.where(cut1, y0 + t1 * dy, y1),
-        shows,
-    )
-
-
 def _sample_segments(px: np.ndarray, py: np.ndarray, nx: int, ny: int) -> tuple[np.ndarray, ...]:
     """Dot coordinates along every segment of a polyline within the picture
     (``nx`` by ``ny`` dots), at least one per dot step, and the index of each
-    dot's segment start point; segments touching a NaN point are skipped (the
-    pen is lifted)."""
-    px, py = np.clip(px, -_FAR, _FAR), np.clip(py, -_FAR, _FAR)  # NaN stays NaN
-    x0, x1, y0, y1 = px[:-1], px[1:], py[:-1], py[1:]
-    keep = np.isfinite(x0) & np.isfinite(x1) & np.isfinite(y0) & np.isfinite(y1)
-    first = np.nonzero(keep)[0]
-    x0, x1, y0, y1, shows = _clip_segments(x0[keep], x1[keep], y0[keep], y1[keep], nx, ny)
-    first, x0, x1, y0, y1 = first[shows], x0[shows], x1[shows], y0[shows], y1[shows]
+    dot's segment start point; segments touching a NaN or infinite point are
+    skipped (the pen is lifted)."""
+    # cut to the picture and a dot's margin round it; a NaN or infinite end
+    # lifts the pen, and far ends are pulled in so the arithmetic cannot overflow
+    x0, x1, y0, y1, shows = clip_segments(
+        *(np.clip(v, -_FAR, _FAR) for v in (px[:-1], px[1:], py[:-1], py[1:])),
+        (-1.0, float(nx)),
+        (-1.0, float(ny)),
+    )
+    shows &= np.isfinite(px[:-1]) & np.isfinite(px[1:]) & np.isfinite(py[:-1]) & np.isfinite(py[1:])
+    first = np.nonzero(shows)[0]
+    x0, x1, y0, y1 = x0[shows], x1[shows], y0[shows], y1[shows]
     if x0.size == 0:
         empty = np.empty(0, np.int64)
         return empty, empty, empty
