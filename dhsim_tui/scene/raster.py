@@ -51,14 +51,20 @@ def _sample_segments(px: np.ndarray, py: np.ndarray, nx: int, ny: int) -> tuple[
     (``nx`` by ``ny`` dots), at least one per dot step, and the index of each
     dot's segment start point; segments touching a NaN or infinite point are
     skipped (the pen is lifted)."""
-    # cut to the picture and a dot's margin round it; a NaN or infinite end
-    # lifts the pen, and far ends are pulled in so the arithmetic cannot overflow
-    x0, x1, y0, y1, shows = clip_segments(
-        *(np.clip(v, -_FAR, _FAR) for v in (px[:-1], px[1:], py[:-1], py[1:])),
-        (-1.0, float(nx)),
-        (-1.0, float(ny)),
-    )
-    shows &= np.isfinite(px[:-1]) & np.isfinite(px[1:]) & np.isfinite(py[:-1]) & np.isfinite(py[1:])
+    # a NaN or infinite end lifts the pen
+    finite = np.isfinite(px) & np.isfinite(py)
+    shows = finite[:-1] & finite[1:]
+    x0, x1, y0, y1 = px[:-1], px[1:], py[:-1], py[1:]
+    fx, fy = px[finite], py[finite]
+    if fx.size and (fx.min() < -1 or fx.max() > nx or fy.min() < -1 or fy.max() > ny):
+        # some of it runs off the picture: cut to it and a dot's margin round
+        # it, far ends pulled in first so that the arithmetic cannot overflow
+        x0, x1, y0, y1, cut = clip_segments(
+            *(np.clip(v, -_FAR, _FAR) for v in (x0, x1, y0, y1)),
+            (-1.0, float(nx)),
+            (-1.0, float(ny)),
+        )
+        shows &= cut
     first = np.nonzero(shows)[0]
     x0, x1, y0, y1 = x0[shows], x1[shows], y0[shows], y1[shows]
     if x0.size == 0:
