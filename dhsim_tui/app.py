@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import contextlib
+import re
 import signal
 import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -15,7 +17,10 @@ from textual.driver import Driver
 from textual.drivers.linux_driver import LinuxDriver
 
 from dhsim_tui import partial_update
+from dhsim_tui.colour import THEMES as DHSIM_THEMES
+from dhsim_tui.colour import install_filters
 from dhsim_tui.core import editing
+from dhsim_tui.core.atomicfile import write_file
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
 from dhsim_tui.core.recovery import Recovery, source_key, write_recovery
@@ -37,6 +42,7 @@ from dhsim_tui.screens.palette import DhsimCommands, DhsimPalette, screens_with_
 from dhsim_tui.screens.recover import offer_recovery
 from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
 from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.screenshot import export_svg
 from dhsim_tui.signals import DhsimDriver, SignalGuard
 from dhsim_tui.terminal import ascii_key, install_ascii_scrollbars, shown
 from dhsim_tui.typeahead import KeysInOrder
@@ -76,8 +82,9 @@ def _joint_count(text: str) -> int:
 
 partial_update.install()  # a changed span is written from where it starts
 
-#: the themes --theme offers: Textual's, by short names
-THEMES = {"dark": "textual-dark", "light": "textual-light", "ansi": "ansi-dark"}
+#: the themes --theme offers, by short names: Textual's own with dhsim's
+#: chrome colours (colour.py)
+THEMES = {short: theme.name for short, theme in DHSIM_THEMES.items()}
 
 
 class DhsimApp(KeysInOrder):
@@ -136,6 +143,9 @@ class DhsimApp(KeysInOrder):
         ``ascii``: draw only 7-bit ASCII (see terminal.py). ``theme``: one of
         ``THEMES`` (``ansi``: the terminal's own 16-colour palette)."""
         super().__init__()
+        for registered in DHSIM_THEMES.values():
+            self.register_theme(registered)
+        install_filters(self)  # NO_COLOR: no colour codes; 16 colours: RGB for the axes
         self.theme = THEMES[theme]
         #: 7-bit ASCII only: widgets and screens read this (getattr(app, "ascii_mode", False))
         self.ascii_mode = ascii
@@ -419,6 +429,32 @@ class DhsimApp(KeysInOrder):
             report(message, error)
         else:
             self.notify(shown(printable(message), self), markup=False)
+
+    # -- pictures for a report ------------------------------------------------------
+    def save_picture(self) -> Path | None:
+        """The screen as it is now, as an SVG in the working folder
+        (``dhsim-<robot>-<date>-<time>.svg``, never over another file); says
+        where, or why not. The file holds what the terminal shows, its
+        colours as this terminal has them."""
+        name = re.sub(r"[^A-Za-z0-9_-]+", "_", self.robot.name).strip("_")[:40] or "robot"
+        stem = f"dhsim-{name}-{time.strftime('%Y%m%d-%H%M%S')}"
+        data = export_svg(self, title=f"dhsim: {printable(self.robot.name)}").encode()
+        try:
+            for number in range(1, 100):
+                path = Path(f"{stem}.svg" if number == 1 else f"{stem}-{number}.svg")
+                if not path.exists():
+                    write_file(path, data)
+                    break
+            else:
+                raise DhsimError(f"{stem}.svg and 98 more exist already")
+        except DhsimError as exc:
+            self._say(f"picture not saved: {exc}", error=True)
+            return None
+        self._say(f"picture saved: {path.resolve()}")
+        return path
+
+    def action_save_picture(self) -> None:
+        self.save_picture()
 
     # -- the command palette and themes -------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from dhsim_tui import __version__
+from dhsim_tui.cli_draw import subparsers as draw_subparsers
 from dhsim_tui.cli_files import subparsers as files_subparsers
 from dhsim_tui.cli_kinematics import VALUE_OPTIONS
 from dhsim_tui.cli_kinematics import subparsers as kinematics_subparsers
@@ -34,7 +35,7 @@ EXIT_INTERNAL = 1
 EXIT_INTERRUPTED = 130
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check, list, import, export, convert and workspace work without one"
+    "fk, ik, check, list, import, export, convert, workspace and draw work without one"
 )
 
 
@@ -192,6 +193,7 @@ def _subparsers() -> dict[str, _Parser]:
         "new": new,
         **files_subparsers(_Parser),
         **workspace_subparsers(_Parser),
+        **draw_subparsers(_Parser),
     }
 
 
@@ -209,6 +211,10 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
        dhsim convert ROBOT --convention standard|modified [-o FILE.toml]
        dhsim workspace ROBOT [--n N] [--seed S] [--json]
                                  where the tool can go: bounding box and reach
+       dhsim draw ROBOT [--q V1,V2,...|--pose NAME] [--view top|front|side|3d|all]
+                  [--size WxH] [--fit] [--frames all|ends|none] [--orbit AZ,EL]
+                  [-o FILE.svg|FILE.txt]
+                                 the views as a picture for a report
        dhsim edit ROBOT [--ascii | --unicode]
                                  the table editor
        dhsim new [NAME] [--ascii | --unicode]

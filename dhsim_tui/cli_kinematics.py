@@ -24,7 +24,7 @@ from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import check_joint_values, fmt
 
 #: options whose value may start with a minus sign (``--q -10,20``)
-VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from")
+VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from", "--orbit")
 #: random restarts of `dhsim ik` after the first start fails (seeded: repeatable)
 IK_RESTARTS = 30
 

@@ -19,6 +19,7 @@ from rich.color import ColorSystem
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
 from dhsim_tui.screens.control import ControlScreen
+from dhsim_tui.screenshot import export_svg
 
 HERE = Path(__file__).resolve().parent
 
@@ -42,7 +43,7 @@ MOVE = (
 
 #: the view modes' shots: the same moved Puma in each way a terminal can ask for
 VIEW_MODES: dict[str, dict] = {
-    "views-120x36": {},
+    "views-120x36": {"color_system": "truecolor"},
     "views-16-colours-120x36": {"color_system": "standard"},
     "views-256-colours-120x36": {"color_system": "256"},
     "views-no-color-120x36": {"no_color": True},
@@ -52,8 +53,12 @@ VIEW_MODES: dict[str, dict] = {
 
 SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
     *[(name, "puma560", (120, 36), MOVE) for name in VIEW_MODES],
-    ("views-3d-maximised-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w")),
+    ("views-fit-120x36", "puma560", (120, 36), (*MOVE, "F")),
+    ("views-3d-maximised-120x36", "puma560", (120, 36), (*MOVE, "4", "z")),
+    ("views-3d-orbited-fit-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w", "F")),
+    ("views-frames-ends-120x36", "puma560", (120, 36), (*MOVE, "x")),
     ("views-zoomed-120x36", "puma560", (120, 36), (*MOVE, "plus", "plus")),
+    ("control-200x60", "puma560", (200, 60), MOVE),
     ("views-workspace-120x36", "puma560", (120, 36), (*MOVE, "W")),
     (
         "control-80x24",
@@ -142,15 +147,18 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
 async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[str, ...]) -> None:
     robot, path = load_robot(robot_name)
     mode = dict(VIEW_MODES.get(name, {}))
-    color_system = mode.pop("color_system", None)
+    # what a truecolor terminal shows, unless the shot is of another depth
+    color_system = mode.pop("color_system", "truecolor")
     if mode.pop("no_color", False):
         os.environ["NO_COLOR"] = "1"  # Textual reads it when the app is made
     app = DhsimApp(robot, path, animate=False, **mode)  # moves land at once: the same shot
     os.environ.pop("NO_COLOR", None)
-    if color_system:  # as TERM=xterm (16 colours) or xterm-256color gets
-        app.console._color_system = (
-            ColorSystem.STANDARD if color_system == "standard" else (ColorSystem.EIGHT_BIT)
-        )
+    # as TERM=xterm (16 colours), xterm-256color or COLORTERM=truecolor gets
+    app.console._color_system = {
+        "standard": ColorSystem.STANDARD,
+        "256": ColorSystem.EIGHT_BIT,
+        "truecolor": ColorSystem.TRUECOLOR,
+    }[color_system]
     async with app.run_test(size=size) as pilot:
         await pilot.press(*keys)
         screen = app.screen
@@ -160,16 +168,30 @@ async def shoot(name: str, robot_name: str, size: tuple[int, int], keys: tuple[s
         await pilot.pause()
         await app.workers.wait_for_complete()  # the workspace cloud is sampled in a worker
         await pilot.pause()
-        app.save_screenshot(filename=f"{name}.svg", path=str(HERE))
+        (HERE / f"{name}.svg").write_text(export_svg(app), encoding="utf-8")
+
+
+#: ``dhsim draw`` pictures: (file name, its arguments)
+DRAWINGS = [
+    ("draw-puma560.svg", ["puma560", "--q", "0,45,-45,0,30,0"]),
+    ("draw-puma560-fit.svg", ["puma560", "--q", "0,45,-45,0,30,0", "--fit"]),
+    ("draw-stanford-front.svg", ["stanford", "--view", "front", "--q", "20,-30,600,0,40,0"]),
+]
 
 
 def main() -> None:
+    from dhsim_tui.cli import main as dhsim
+
     prefixes = tuple(sys.argv[1:])
     for shot in SHOTS:
         if prefixes and not shot[0].startswith(prefixes):
             continue
         asyncio.run(shoot(*shot))
         print(f"screenshots/{shot[0]}.svg")
+    for name, args in DRAWINGS:
+        if prefixes and not name.startswith(prefixes):
+            continue
+        dhsim(["draw", *args, "-o", str(HERE / name), "--force"])
 
 
 if __name__ == "__main__":

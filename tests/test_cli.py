@@ -489,7 +489,7 @@ def test_ik_bad_input_exits_2_with_one_line(capsys, argv, message):
 
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check, list, import, export, convert and workspace work without one\n"
+    "fk, ik, check, list, import, export, convert, workspace and draw work without one\n"
 )
 INTERACTIVE_ARGV = [[], ["puma560"], ["edit", "puma560"], ["new"], ["no_such_robot"]]
 

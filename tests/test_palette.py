@@ -147,7 +147,7 @@ async def test_views_zoom_and_theme_commands():
         assert "View: restore" in names and "View: maximise" not in names
         await pilot.press("escape")
         await run_command(pilot, "light", "Theme: light")
-        assert app.theme == "textual-light"
+        assert app.theme == "dhsim-light"
 
 
 async def test_save_is_offered_only_when_something_is_unsaved():

@@ -3,6 +3,7 @@ where plotext places them, one scale, never a NaN or inf handed to plotext."""
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 
@@ -15,13 +16,8 @@ from plotext._figure import _figure_class
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.render.picture import NO_ROLE, ROLE_INDEX, Framing, Look
-from dhsim_tui.render.plotext_picture import (
-    PlotextPainter,
-    braille_cells,
-    nice_step,
-    tick_label,
-    tick_values,
-)
+from dhsim_tui.render.plotext_picture import PlotextPainter, braille_cells
+from dhsim_tui.render.ticks import nice_step, tick_label, tick_values
 from dhsim_tui.scene import build_wireframe, project
 from dhsim_tui.scene.oblique import Orbit, project_oblique
 from dhsim_tui.scene.projection import FRONT, SIDE, TOP, Polyline, ViewScene, per_dot_needed
@@ -72,7 +68,7 @@ def test_the_cells_land_where_plotext_itself_places_them(view, cols, rows):
     )
     built = SGR.sub("", fig.build()).split("\n")[:rows]
     assert [line.ljust(cols)[:cols] for line in built] == list(picture.lines)
-    assert xs.size > 10  # the arm really is on the canvas
+    assert xs.size > 6  # the arm really is on the canvas (links in whole blocks)
 
 
 def test_ticks_are_numbered_in_the_robots_unit_at_their_place():
@@ -87,10 +83,33 @@ def test_ticks_are_numbered_in_the_robots_unit_at_their_place():
     zero_col = left + (0 - x0) / (x1 - x0) * canvas_cols
     at = re.search(r"(?<![\d-])0(?![\d])", labels).start()
     assert abs(at - zero_col) <= 1.5
-    # the y labels are right-aligned left of the axis, also multiples of the step
+    # the y labels are right-aligned left of the axis, evenly spaced multiples
+    # of a 1, 2, 5 x 10^k step (two rows apart at least: finer than x's here)
     y_labels = [line[: left - 1].strip() for line in picture.lines[:canvas_rows]]
     numbers = [float(v) for v in y_labels if v]
-    assert len(numbers) >= 3 and all(v % 500 == 0 for v in numbers)
+    step = numbers[0] - numbers[1]
+    assert len(numbers) >= 3 and step == nice_step(step)
+    assert all(v % step == 0 for v in numbers)
+    assert all(a - b == step for a, b in itertools.pairwise(numbers))
+
+
+@pytest.mark.parametrize("size", [(40, 14), (60, 22), (100, 30)])
+def test_a_robot_in_metres_gets_ticks_finer_than_a_metre(size):
+    """A robot in metres was numbered at whole metres only (-2 ... 2)."""
+    from dhsim_tui.core.editing import set_units
+
+    metres = set_units(load_robot("ur5")[0], "m")
+    wire = build_wireframe(metres, metres.kinematics.frames(metres.home))
+    scene = project(wire, FRONT)
+    cols, rows = size
+    picture = PlotextPainter().draw(scene, cols, rows, framing_for(scene, cols, rows), Look())
+    left, _, _, canvas_rows = picture.canvas
+    y_labels = [line[: left - 1].strip() for line in picture.lines[:canvas_rows]]
+    numbers = [float(v) for v in y_labels if v]
+    assert abs(numbers[0] - numbers[1]) < 1.0  # 0.5 m or 0.2 m
+    x_labels = [float(v) for v in picture.lines[-1].split()]
+    x_step = x_labels[1] - x_labels[0]
+    assert x_step == pytest.approx(nice_step(x_step)) and x_step <= 1.0
 
 
 @pytest.mark.parametrize(
@@ -116,10 +135,26 @@ def test_every_role_is_styled_and_the_axes_frame_is_its_own_role():
 
 
 def test_mono_names_the_axes_with_letters_and_keeps_the_tool():
+    scene = puma_scene(FRONT, q=(10.0, -30.0, 20.0, 40.0, 50.0, 60.0))
+    picture = PlotextPainter().draw(scene, 60, 22, framing_for(scene, 60, 22), Look(mono=True))
+    left, _, _, rows = picture.canvas
+    canvas = [line[left:] for line in picture.lines[:rows]]
+    assert {"x", "y", "z"} <= set("".join(canvas)) and "◆" in "".join(canvas)
+    # one letter a tip, never a run of the same letter (two frames' tips side by side)
+    for row in canvas:
+        for a, b in itertools.pairwise(row):
+            assert not (a == b and a in "xyz"), row
+
+
+def test_without_colour_a_letter_names_only_an_axis_that_shows():
+    """At home, seen from the front, frame 1's y axis lies under frame 0's z
+    axis and the link: it gets no letter, where it would have named z's cell."""
     scene = puma_scene(FRONT)
     picture = PlotextPainter().draw(scene, 60, 22, framing_for(scene, 60, 22), Look(mono=True))
-    canvas = "".join(line[picture.canvas[0] :] for line in picture.lines[: picture.canvas[3]])
-    assert {"x", "y", "z"} <= set(canvas) and "◆" in canvas
+    for y, line in enumerate(picture.lines[: picture.canvas[3]]):
+        for x, char in enumerate(line):
+            if char in "xyz" and x >= picture.canvas[0]:
+                assert picture.roles[y, x] == ROLE_INDEX[char], (y, x, char)
 
 
 def test_ascii_pictures_are_seven_bit_and_drawn_with_plotext_markers():

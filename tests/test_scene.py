@@ -11,6 +11,7 @@ from dhsim_tui.scene import VIEWS, build_wireframe, equal_scale_limits, project
 from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import Polyline, ViewScene
 from dhsim_tui.scene.raster import rasterize
+from dhsim_tui.scene.wireframe import AXIS_FRACTION
 
 
 @pytest.mark.parametrize(("cols", "rows"), [(40, 10), (80, 24), (30, 30), (57, 21), (2, 2)])
@@ -63,12 +64,13 @@ def test_frame_axes_scale_with_the_arm_and_shared_origins_draw_longer():
     puma, _ = load_robot("puma560")
     wire = build_wireframe(puma, puma.kinematics.frames(puma.home))
     lengths = np.linalg.norm(wire.axes - wire.origins[:, None, :], axis=2)
-    base = 0.12 * reach(puma)
+    base = AXIS_FRACTION * reach(puma)
+    assert AXIS_FRACTION == 0.06  # short beside the links (issue 16: 12% hid the arm)
     assert lengths[0] == pytest.approx([base] * 3)
     assert lengths[1] == pytest.approx([1.5 * base] * 3)  # frame 1 shares frame 0's origin
     small = Robot("small", (Joint(a=10.0),))
     small_wire = build_wireframe(small, small.kinematics.frames(small.home))
-    assert np.linalg.norm(small_wire.axes[0, 0] - small_wire.origins[0]) == pytest.approx(1.2)
+    assert np.linalg.norm(small_wire.axes[0, 0] - small_wire.origins[0]) == pytest.approx(0.6)
 
 
 def test_pedestal_and_floor():
@@ -78,7 +80,9 @@ def test_pedestal_and_floor():
     assert np.allclose(wire.pedestal, [[0, 0, -250], [0, 0, 0]])
     front = project(wire, VIEWS[1])
     assert front.lines[0].role == "floor" and front.lines[0].ys == (-250.0, -250.0)
-    assert front.lines[1].role == "pedestal"
+    roles = [line.role for line in front.lines]
+    # the pedestal and the links are drawn over the frame axes, the links last
+    assert roles[-2:] == ["pedestal", "link"] and roles.index("x") < roles.index("pedestal")
     assert not any(line.role == "pedestal" for line in project(wire, VIEWS[0]).lines)
     assert wire.warnings == ()
 

@@ -76,11 +76,15 @@ def test_control_cartesian_mode(snap_compare):
 
 
 def _puma(**kwargs):
+    from rich.color import ColorSystem
+
     from dhsim_tui.app import DhsimApp
     from dhsim_tui.core import load_robot
 
     robot, path = load_robot("puma560")
-    return DhsimApp(robot, path, animate=False, **kwargs)
+    app = DhsimApp(robot, path, animate=False, **kwargs)
+    app.console._color_system = ColorSystem.TRUECOLOR  # unless a test says otherwise
+    return app
 
 
 def test_views_120x36_four_views(snap_compare):
@@ -89,6 +93,18 @@ def test_views_120x36_four_views(snap_compare):
 
 def test_views_3d_maximised_and_orbited(snap_compare):
     assert snap_compare(APP, press=(*MOVE, "4", "z", "d", "w"), terminal_size=(120, 36))
+
+
+def test_views_fitted_to_the_arm(snap_compare):
+    assert snap_compare(APP, press=(*MOVE, "F"), terminal_size=(120, 36))
+
+
+def test_views_with_the_base_and_tool_frames_only(snap_compare):
+    assert snap_compare(APP, press=(*MOVE, "x"), terminal_size=(120, 36))
+
+
+def test_control_200x60_every_read_out(snap_compare):
+    assert snap_compare(APP, press=MOVE, terminal_size=(200, 60))
 
 
 def test_views_zoomed(snap_compare):
@@ -120,7 +136,7 @@ def test_views_ansi_theme(snap_compare):
     app = _puma()
 
     async def ansi(pilot):
-        pilot.app.theme = "ansi-dark"
+        pilot.app.theme = "dhsim-ansi"
 
     assert snap_compare(app, press=MOVE, run_before=ansi, terminal_size=(120, 36))
 

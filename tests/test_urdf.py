@@ -374,6 +374,9 @@ def random_trees(draw):
         ancestors.append(parents[ancestors[-1]])
     base = draw(st.one_of(st.just(0), st.sampled_from(ancestors)))
     values = draw(st.lists(st.floats(-7, 7, allow_nan=False), min_size=count, max_size=count))
+    # yourdfpy (the reference) ignores a change of configuration under its
+    # EQUALITY_TOLERANCE (1e-8): a joint at 2.6e-9 rad stays at 0 there
+    values = [0.0 if abs(v) < 1e-7 else v for v in values]
     return "\n".join(parts), f"l{tip}", f"l{base}", values
 
 

@@ -151,8 +151,8 @@ def _sgr(style, system: str) -> str:
     ("system", "codes"),
     [
         ("standard", ("91", "92", "94")),  # the ANSI bright red, green, blue
-        ("256", ("38;5;196", "38;5;40", "38;5;33")),
-        ("truecolor", ("38;2;255;79;79", "38;2;51;204;51", "38;2;79;134;255")),
+        ("256", ("38;5;167", "38;5;71", "38;5;69")),
+        ("truecolor", ("38;2;215;95;95", "38;2;95;175;95", "38;2;95;135;255")),
     ],
 )
 def test_axes_are_red_green_blue_in_every_colour_depth(system, codes):
@@ -187,24 +187,30 @@ async def test_the_ansi_theme_hands_the_terminal_its_own_colours():
         for role, name in (("x", "bright_red"), ("y", "bright_green"), ("z", "bright_blue")):
             colour = styles[CELL_ROLES.index(role)].color
             assert colour.is_system_defined and colour.name == name
-        app.theme = "textual-dark"  # and back: real blue again
+        app.theme = "dhsim-dark"  # and back: real blue again
         await pilot.pause()
         front.render_line(0)
         assert not front._styles[CELL_ROLES.index("z")].color.is_system_defined
 
 
-@pytest.mark.parametrize("size", [(120, 36), (160, 48)])
+@pytest.mark.parametrize("size", [(80, 24), (120, 36), (160, 48)])
 async def test_the_editors_preview_shows_the_legend_only_when_it_fits(size):
+    """The legend is shown when it names at least the links, the joints and
+    the tool on its one line (the editor's narrow preview at 80 columns has
+    no room), and is never wrapped or cut."""
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, start="edit")
     async with app.run_test(size=size) as pilot:
         await pilot.pause()
         panel = app.screen.query_one(ViewsPanel)
         legend = panel.query_one(".legend")
-        fits = panel.size.width >= 70  # the legend's one line, and its padding
-        assert legend.display == fits == (size == (160, 48))
+        essentials = len("━ links  ● joint  ◆ tool")
+        fits = panel.size.width - 2 >= essentials
+        assert legend.display == fits == (size != (80, 24))
         if fits:
-            assert len(legend.render().plain) <= legend.size.width
+            text = legend.render().plain
+            assert text.startswith("━ links  ● joint  ◆ tool")
+            assert len(text) <= legend.size.width
 
 
 def test_a_theme_that_does_not_exist_gets_one_line(capsys):

@@ -151,6 +151,37 @@ def write_atomic(
                 os.unlink(tmp_name)
 
 
+def write_file(path: str | os.PathLike[str], data: bytes, *, overwrite: bool = False) -> Path:
+    """Write ``data`` to ``path`` atomically (an export, a picture) and return ``path``.
+
+    An existing file is replaced only with ``overwrite`` (keeping its owner
+    and mode); a folder, a device or a pipe never is. A symbolic link is
+    followed: the file it points to is written. Every failure is a
+    :class:`RobotFileError` naming the path (the check for an existing file
+    and the rename are not one step, so a file created in between is replaced)."""
+    given = Path(path)
+    if not str(path):
+        raise file_error("the file name is empty; give a name to write to")
+    try:
+        target = Path(os.path.realpath(given)) if given.is_symlink() else given
+        info: os.stat_result | None = os.stat(target)
+    except FileNotFoundError:
+        info = None
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or exc
+        raise file_error(f"{given}: cannot write: {reason}") from None
+    if info is not None:
+        if stat.S_ISDIR(info.st_mode):
+            raise file_error(f"{given}: is a folder; give a file name to write to")
+        if not overwrite:
+            raise file_error(f"{given}: already exists; choose another name or overwrite it")
+        if not stat.S_ISREG(info.st_mode):
+            raise file_error(f"{given}: cannot write: not a regular file (a device or a pipe?)")
+    remove_stale_temps(target)
+    write_atomic(target, given, data, info)
+    return given
+
+
 def _keep_owner(fd: int, old: os.stat_result, given: Path) -> None:
     mine = os.fstat(fd)
     if (mine.st_uid, mine.st_gid) == (old.st_uid, old.st_gid):

@@ -69,10 +69,9 @@ import csv
 import io
 import json
 import os
-import stat
 from pathlib import Path
 
-from dhsim_tui.core.atomicfile import file_error, remove_stale_temps, write_atomic
+from dhsim_tui.core.atomicfile import write_file
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.formats import EXPORT_FORMATS
 from dhsim_tui.core.model import Robot
@@ -100,33 +99,9 @@ def export_text(robot: Robot, fmt: str) -> str:
 def write_export(
     robot: Robot, fmt: str, path: str | os.PathLike[str], *, overwrite: bool = False
 ) -> Path:
-    """Write :func:`export_text` to ``path`` atomically and return ``path``.
-
-    An existing file is replaced only with ``overwrite`` (keeping its owner
-    and mode); a folder, a device or a pipe never is. A symbolic link is
-    followed: the file it points to is written. Every failure is a
-    :class:`DhsimError` naming the path (the check for an existing file and
-    the rename are not one step, so a file created in between is replaced)."""
-    data = export_text(robot, fmt).encode("utf-8")
-    given = Path(path)
-    try:
-        target = Path(os.path.realpath(given)) if given.is_symlink() else given
-        info: os.stat_result | None = os.stat(target)
-    except FileNotFoundError:
-        info = None
-    except (OSError, ValueError) as exc:
-        reason = getattr(exc, "strerror", None) or exc
-        raise file_error(f"{given}: cannot write: {reason}") from None
-    if info is not None:
-        if stat.S_ISDIR(info.st_mode):
-            raise file_error(f"{given}: is a folder; give a file name to export to")
-        if not overwrite:
-            raise file_error(f"{given}: already exists; choose another name or overwrite it")
-        if not stat.S_ISREG(info.st_mode):
-            raise file_error(f"{given}: cannot write: not a regular file (a device or a pipe?)")
-    remove_stale_temps(target)
-    write_atomic(target, given, data, info)
-    return given
+    """Write :func:`export_text` to ``path`` atomically and return ``path``
+    (see :func:`~dhsim_tui.core.atomicfile.write_file`)."""
+    return write_file(path, export_text(robot, fmt).encode("utf-8"), overwrite=overwrite)
 
 
 # -- CSV --------------------------------------------------------------------------------

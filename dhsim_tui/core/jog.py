@@ -6,6 +6,7 @@ never wraps and never passes a limit; it stops on the limit and says so.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,6 +58,17 @@ def set_joint(robot: Robot, q: tuple[float, ...], index: int, value: float) -> M
         limit = "max"
     new = (*q[:index], clamped, *q[index + 1 :])
     return Move(new, clamped != q[index], limit)
+
+
+def snapped(robot: Robot, index: int, value: float, level: int) -> float:
+    """``value`` for joint ``index`` rounded to a whole number of steps at
+    ladder ``level`` (a slider picked with the mouse), within its limits."""
+    joint = robot.joints[index]
+    step = step_size(robot, index, level)
+    if not math.isfinite(value):
+        value = joint.home
+    rounded = round(value / step) * step
+    return min(max(round(rounded, DECIMALS), joint.min), joint.max)
 
 
 def step_joint(robot: Robot, q: tuple[float, ...], index: int, delta: float) -> Move:

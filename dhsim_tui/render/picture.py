@@ -7,7 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dhsim_tui.scene.framing import Framing
 from dhsim_tui.scene.projection import ROLES
+
+__all__ = ["CELL_ROLES", "NO_ROLE", "ROLE_INDEX", "Framing", "Look", "Picture", "blank"]
 
 #: every role a cell can have: the scene's, then the plot's frame and ticks,
 #: then the workspace cloud drawn behind everything (``render.cloud``)
@@ -24,15 +27,6 @@ class Look:
     ascii: bool = False
     #: no colour to tell things apart: letters name the axes at their tips
     mono: bool = False
-
-
-@dataclass(frozen=True)
-class Framing:
-    """Where a view looks and how close: its centre (in the view's plane)
-    and the length one braille dot stands for (robot units)."""
-
-    centre: tuple[float, float]
-    per_dot: float
 
 
 @dataclass(frozen=True)

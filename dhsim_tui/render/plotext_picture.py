@@ -35,8 +35,9 @@ from dhsim_tui.render.picture import (
     Picture,
     blank,
 )
+from dhsim_tui.render.ticks import tick_label, tick_values, x_step, y_step
 from dhsim_tui.scene.clip import clip_segments
-from dhsim_tui.scene.projection import ViewScene, limits_at
+from dhsim_tui.scene.projection import Mark, ViewScene, limits_at
 from dhsim_tui.scene.raster import MARKER, rasterize
 
 #: plotext's markers for each role in 7-bit ASCII
@@ -44,11 +45,14 @@ ASCII_MARKS = {
     "grid": ".",
     "floor": "_",
     "floor_hit": "!",
-    "pedestal": ":",
+    "shadow": ",",
+    "pedestal": "H",
     "link": "#",
     "x": "x",
     "y": "y",
     "z": "z",
+    "revolute": "O",
+    "prismatic": "=",
     "tool": "@",
 }
 _MARK_ROLE = {mark: ROLE_INDEX[role] for role, mark in ASCII_MARKS.items()}
@@ -58,29 +62,6 @@ _SGR = re.compile(r"\x1b\[[0-9;]*m")
 #: the smallest picture that still gets axes (columns, rows)
 MIN_SIZE = (30, 8)
 _AXES = ROLE_INDEX["axes"]
-
-
-def nice_step(least: float) -> float:
-    """The smallest 1, 2 or 5 × 10^k that is at least ``least``."""
-    if not least > 0 or not math.isfinite(least):
-        return 1.0
-    power = 10.0 ** math.floor(math.log10(least))
-    for factor in (1.0, 2.0, 5.0, 10.0):
-        if factor * power >= least * (1 - 1e-12):
-            return factor * power
-    return 10.0 * power
-
-
-def tick_values(lim: tuple[float, float], step: float) -> list[float]:
-    first = math.ceil(lim[0] / step - 1e-9)
-    last = math.floor(lim[1] / step + 1e-9)
-    return [k * step for k in range(first, last + 1)]
-
-
-def tick_label(value: float, step: float) -> str:
-    decimals = max(0, -math.floor(math.log10(step) + 1e-12))
-    text = f"{value:.{decimals}f}"
-    return "0" if float(text) == 0 else text
 
 
 def _finite(values) -> list[float | None]:
@@ -136,18 +117,18 @@ class PlotextPainter:
         # the y labels' width sets the canvas width: find the y ticks first
         _, ylim = limits_at(framing.centre, framing.per_dot, 2, canvas_rows)
         per_col, per_row = 2 * framing.per_dot, 4 * framing.per_dot
-        # one step on both axes: x labels (about 5 characters) a column
-        # apart at least, y labels two rows apart
-        widest = max(len(tick_label(v, 1.0)) for v in (*ylim, *self._x_span(framing, cols)))
-        step = nice_step(max((widest + 1) * per_col, 2 * per_row))
-        y_ticks = tick_values(ylim, step) if with_ticks else []
-        y_labels = [tick_label(v, step) for v in y_ticks]
+        # y labels two rows apart; x labels a space apart, as fine as that
+        # allows (the same step on both axes where it can be)
+        vertical = y_step(per_row)
+        across = x_step(self._x_span(framing, cols), per_col, least=vertical)
+        y_ticks = tick_values(ylim, vertical) if with_ticks else []
+        y_labels = [tick_label(v, vertical) for v in y_ticks]
         label_width = max((len(label) for label in y_labels), default=0)
         left = label_width + 1 if with_ticks else 0
         canvas_cols = cols - left
         xlim, ylim = limits_at(framing.centre, framing.per_dot, canvas_cols, canvas_rows)
-        x_ticks = tick_values(xlim, step) if with_ticks else []
-        x_labels = [tick_label(v, step) for v in x_ticks]
+        x_ticks = tick_values(xlim, across) if with_ticks else []
+        x_labels = [tick_label(v, across) for v in x_ticks]
         canvas = (left, 0, canvas_cols, canvas_rows)
         if not all(map(math.isfinite, (*xlim, *ylim, *x_ticks, *y_ticks))):
             return bare_picture(scene, cols, rows, framing, look)
@@ -225,10 +206,11 @@ class PlotextPainter:
                 py += ys
         for role, (xs, ys) in by_role.items():
             self.figure.plot(xs, ys, marker=ASCII_MARKS[role])
-        ex, ey = scene.end_effector
-        # only a tool on the picture: plotext turns a point far off it into inf
-        if xlim[0] <= ex <= xlim[1] and ylim[0] <= ey <= ylim[1]:
-            self.figure.scatter([ex], [ey], marker=ASCII_MARKS[MARKER])
+        # the joints, then the tool over them; only marks on the picture:
+        # plotext turns a point far off it into inf
+        for mark in scene.marks or (Mark(*scene.end_effector, MARKER),):
+            if xlim[0] <= mark.x <= xlim[1] and ylim[0] <= mark.y <= ylim[1]:
+                self.figure.scatter([mark.x], [mark.y], marker=ASCII_MARKS[mark.role])
         return None
 
 
@@ -246,21 +228,27 @@ def braille_cells(scene: ViewScene, cols: int, rows: int, xlim, ylim, look: Look
 
 
 def _label_tips(scene: ViewScene, chars, roles: np.ndarray, xlim, ylim) -> None:
-    """Without colour, a letter at the end of every frame axis names it."""
+    """Without colour, a letter at the end of a frame axis names it: in the
+    tip's own cell when the axis shows there (not under a link, joint or the
+    tool), and never beside the same letter, so two frames' tips side by
+    side never run together as ``xx``."""
     rows, cols = roles.shape
     sx = (2 * cols - 1) / (xlim[1] - xlim[0])
     sy = (4 * rows - 1) / (ylim[1] - ylim[0])
-    tool = ROLE_INDEX[MARKER]
-    taken: set[tuple[int, int]] = set()
+    taken: dict[tuple[int, int], str] = {}
     for tip in scene.tips:
         if not (math.isfinite(tip.x) and math.isfinite(tip.y)):
             continue
         x = round((tip.x - xlim[0]) * sx) // 2
         y = round((ylim[1] - tip.y) * sy) // 4
-        if 0 <= x < cols and 0 <= y < rows and (y, x) not in taken and roles[y, x] != tool:
-            chars[y][x] = tip.role
-            roles[y, x] = ROLE_INDEX[tip.role]
-            taken.add((y, x))
+        if not (0 <= x < cols and 0 <= y < rows) or roles[y, x] != ROLE_INDEX[tip.role]:
+            continue
+        if (y, x) in taken or any(
+            taken.get((y + dy, x + dx)) == tip.role for dy in (-1, 0, 1) for dx in (-1, 0, 1)
+        ):
+            continue
+        chars[y][x] = tip.role
+        taken[(y, x)] = tip.role
 
 
 def bare_picture(scene: ViewScene, cols: int, rows: int, framing: Framing, look: Look) -> Picture:

@@ -147,32 +147,80 @@ def view_point(wire: Wireframe, view: View, orbit: Orbit, point: np.ndarray) -> 
     return float(point[view.right]), float(point[view.up])
 
 
-def project_oblique(wire: Wireframe, orbit: Orbit = Orbit()) -> ViewScene:
-    """The 3-D view of the wireframe from ``orbit``, over the floor grid.
+#: room left above and below the drawing, a fraction of its height
+PICTURE_MARGIN = 0.03
 
-    ``bounds`` depend only on the work area: a box with half-sizes hx, hy, hz
-    seen from any direction spans at most ±hypot(hx, hy) across (``right``
-    lies in the floor plane) and ±sqrt(hx² + hy² + hz²) up and down (the
-    circumscribed sphere's radius), both reached for some orbit. The arm
-    stays within its reach of frame 0, which lies inside that sphere.
+
+def picture_bounds(
+    wire: Wireframe, orbit: Orbit, arm: np.ndarray | None = None
+) -> tuple[float, float, float, float]:
+    """What the 3-D view frames: the floor of the work area as far up, down
+    and across as it could show from ``orbit``'s elevation at *any*
+    azimuth (its square turned to its widest, the diagonal ``hypot(hx, hy)``
+    across and ``|sin el|`` of that deep), and the arm (``arm``: its world
+    points, default the links and frame origins) as it shows from ``orbit``;
+    with a small margin above and below.
+
+    The seed's box up to reach + 30 above frame 0 is not framed: most of it
+    is empty whatever the pose, which made the 3-D view mostly floor. The
+    views panel keeps this framing while the arm stays within it, turning
+    included, and frames again when it leaves (``ViewsPanel``).
     """
     area = wire.area
-    half = (_box(area)[1] - _box(area)[0]) / 2
-    to_2d = picture_coordinates(area, orbit)
-    wider = area.limits("x" if half[0] >= half[1] else "y")
+    lows, highs = _box(area)
+    centre = (lows + highs) / 2
+    hx, hy = (highs[0] - lows[0]) / 2, (highs[1] - lows[1]) / 2
+    el = math.radians(orbit.elevation)
+    depth, rise = abs(math.sin(el)), math.cos(el)
+    across = math.hypot(hx, hy)
+    floor = (wire.floor_z - centre[2]) * rise
+    top, bottom = floor + depth * across, floor - depth * across
+    points = np.vstack([wire.links, wire.origins]) if arm is None else arm
+    points = np.asarray(points, dtype=float).reshape(-1, 3)
+    points = points[np.isfinite(points).all(axis=1)]
+    if len(points):
+        xs, ys = picture_coordinates(area, orbit)(points)
+        top, bottom = max(top, float(ys.max())), min(bottom, float(ys.min()))
+        across = max(across, float(np.abs(xs).max()))
+    pad = PICTURE_MARGIN * (top - bottom)
+    return (-across, across, bottom - pad, top + pad)
+
+
+def project_oblique(wire: Wireframe, orbit: Orbit = Orbit(), frames: str = "all") -> ViewScene:
+    """The 3-D view of the wireframe from ``orbit``, over the floor grid and
+    the links' shadow, with the axes of the frames ``frames`` shows.
+
+    ``bounds`` (:func:`picture_bounds`) depend on the floor, the arm and
+    the elevation: turning the view about the vertical never moves them.
+    """
+    to_2d = picture_coordinates(wire.area, orbit)
+    half = (_box(wire.area)[1] - _box(wire.area)[0]) / 2
+    wider = wire.area.limits("x" if half[0] >= half[1] else "y")
     step = grid_step(*wider)  # one spacing both ways, from the wider side
     grid, outline = floor_points(wire, step)
     role = "floor_hit" if wire.below_floor else "floor"  # something went through it
     floor = [Polyline(*_tuples(to_2d(grid)), "grid"), Polyline(*_tuples(to_2d(outline)), role)]
-    lines, tips, ee, arm = wire_lines(wire, to_2d, floor)
-    across, tall = float(math.hypot(half[0], half[1])), float(np.linalg.norm(half))
+    if wire.shadow is not None:
+        floor.append(Polyline(*_tuples(to_2d(wire.shadow)), "shadow"))
+    lines, tips, ee, arm, marks, fit = wire_lines(wire, to_2d, floor, frames)
     return ViewScene(
         view=ISO,
         lines=lines,
         end_effector=ee,
-        bounds=(-across, across, -tall, tall),
+        bounds=picture_bounds(wire, orbit, _arm_points(wire, frames)),
         units=wire.units,
         tips=tips,
         arm_bounds=arm,
         grid_step=step,
+        marks=marks,
+        fit_bounds=fit,
     )
+
+
+def _arm_points(wire: Wireframe, frames: str) -> np.ndarray:
+    """The arm as drawn: links, pedestal, tool and the axes of the frames shown."""
+    shown = wire.shown_frames(frames)
+    parts = [wire.links, wire.end_effector[None, :], wire.axes[shown].reshape(-1, 3)]
+    if wire.pedestal is not None:
+        parts.append(wire.pedestal)
+    return np.vstack(parts)

@@ -15,8 +15,25 @@ from dhsim_tui.scene.wireframe import Wireframe
 
 #: the roles of a frame's three axes, in order
 AXIS_ROLES = ("x", "y", "z")
-#: every role a scene line can have, in drawing order (later ones on top)
-ROLES = ("grid", "floor", "floor_hit", "pedestal", "link", "x", "y", "z", "tool")
+#: every role a scene line or mark can have, in drawing order (later ones on
+#: top): the floor and its grid, the links' shadow on it, the frame axes,
+#: the pedestal and links over them, and the joints and tool over the links
+ROLES = (
+    "grid",
+    "floor",
+    "floor_hit",
+    "shadow",
+    "x",
+    "y",
+    "z",
+    "pedestal",
+    "link",
+    "revolute",
+    "prismatic",
+    "tool",
+)
+#: the roles drawn as a mark (one glyph at a point) rather than a line
+MARK_ROLES = ("revolute", "prismatic", "tool")
 
 
 @dataclass(frozen=True)
@@ -78,6 +95,15 @@ class Polyline:
 
 
 @dataclass(frozen=True)
+class Mark:
+    """One glyph at a point: a joint (``revolute`` or ``prismatic``) or the tool."""
+
+    x: float
+    y: float
+    role: str
+
+
+@dataclass(frozen=True)
 class Tip:
     """The end of one frame axis: where a letter can name it without colour."""
 
@@ -102,6 +128,10 @@ class ViewScene:
     arm_bounds: tuple[float, float, float, float] | None = None
     #: spacing of the floor grid (3-D view), in the robot's unit
     grid_step: float | None = None
+    #: the joints and the tool, drawn over everything (the tool last)
+    marks: tuple[Mark, ...] = ()
+    #: what F fits the view to: the links, tool, joints and the axes drawn
+    fit_bounds: tuple[float, float, float, float] | None = None
 
 
 def extent(xs: np.ndarray, ys: np.ndarray) -> tuple[float, float, float, float]:
@@ -118,35 +148,58 @@ def extent(xs: np.ndarray, ys: np.ndarray) -> tuple[float, float, float, float]:
 
 
 def wire_lines(
-    wire: Wireframe, to_2d, floor: list[Polyline]
-) -> tuple[tuple[Polyline, ...], tuple[Tip, ...], tuple[float, float], tuple]:
+    wire: Wireframe, to_2d, floor: list[Polyline], frames: str = "all"
+) -> tuple[tuple[Polyline, ...], tuple[Tip, ...], tuple[float, float], tuple, tuple, tuple]:
     """The wireframe's lines through a projection ``to_2d((m, 3)) -> (xs, ys)``:
-    the given floor lines, pedestal, links and every frame's axes, the axis
-    tips, the end effector and the arm's extent, in the projection's plane."""
+    the given floor lines, pedestal, the axes of the frames ``frames`` shows
+    (``FRAME_MODES``) and the links over them; the axis tips, the end
+    effector, the arm's extent, the joints' and the tool's marks and what
+    ``F`` fits (links, joints, tool and the axes drawn), in the projection's plane."""
 
     def line(points: np.ndarray, role: str) -> Polyline:
         xs, ys = to_2d(points)
         return Polyline(tuple(xs.tolist()), tuple(ys.tolist()), role)
 
     lines = list(floor)
-    if wire.pedestal is not None:
-        lines.append(line(wire.pedestal, "pedestal"))
-    lines.append(line(wire.links, "link"))
-    gap = np.full((len(wire.origins), 1, 3), np.nan)
+    shown = wire.shown_frames(frames)
+    origins, ends = wire.origins[shown], wire.axes[shown]
+    gap = np.full((len(origins), 1, 3), np.nan)
     tips: list[Tip] = []
     for k, role in enumerate(AXIS_ROLES):
-        # every frame's k-th axis as one polyline, segments separated by NaN
-        strokes = np.concatenate([wire.origins[:, None, :], wire.axes[:, k : k + 1, :], gap], 1)
+        if not len(origins):
+            break
+        # every shown frame's k-th axis as one polyline, segments separated by NaN
+        strokes = np.concatenate([origins[:, None, :], ends[:, k : k + 1, :], gap], 1)
         lines.append(line(strokes.reshape(-1, 3)[:-1], role))
-        ends_x, ends_y = to_2d(wire.axes[:, k, :])
+        ends_x, ends_y = to_2d(ends[:, k, :])
         tips.extend(Tip(float(x), float(y), role) for x, y in zip(ends_x, ends_y, strict=True))
+    if wire.pedestal is not None:  # the arm's structure goes over its frames
+        lines.append(line(wire.pedestal, "pedestal"))
+    lines.append(line(wire.links, "link"))
+    marks: list[Mark] = []
+    if wire.joints is not None and len(wire.joints):
+        jx, jy = to_2d(wire.joints)
+        marks.extend(
+            Mark(float(x), float(y), kind)
+            for x, y, kind in zip(jx.tolist(), jy.tolist(), wire.joint_types, strict=True)
+        )
     ex, ey = to_2d(wire.end_effector[None, :])
+    marks.append(Mark(float(ex[0]), float(ey[0]), "tool"))
     arm_x, arm_y = to_2d(np.vstack([wire.links, wire.origins]))
-    return tuple(lines), tuple(tips), (float(ex[0]), float(ey[0])), extent(arm_x, arm_y)
+    fit_x, fit_y = to_2d(np.vstack([wire.links, wire.end_effector[None, :], *ends]))
+    return (
+        tuple(lines),
+        tuple(tips),
+        (float(ex[0]), float(ey[0])),
+        extent(arm_x, arm_y),
+        tuple(marks),
+        extent(fit_x, fit_y),
+    )
 
 
-def project(wire: Wireframe, view: View) -> ViewScene:
-    """An orthographic view (top, front or side) of the wireframe."""
+def project(wire: Wireframe, view: View, frames: str = "all") -> ViewScene:
+    """An orthographic view (top, front or side) of the wireframe, with the
+    axes of the frames ``frames`` shows."""
     if view.is_3d:
         raise ValueError("the 3-D view orbits: use scene.oblique.project_oblique")
     area = wire.area
@@ -161,10 +214,20 @@ def project(wire: Wireframe, view: View) -> ViewScene:
     def to_2d(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return points[:, view.right], points[:, view.up]
 
-    lines, tips, ee, arm = wire_lines(wire, to_2d, floor)
+    lines, tips, ee, arm, marks, fit = wire_lines(wire, to_2d, floor, frames)
     if view.up != 2:  # the pedestal stands straight up: a point from above
         lines = tuple(line for line in lines if line.role != "pedestal")
-    return ViewScene(view, lines, ee, (xmin, xmax, ymin, ymax), wire.units, tips, arm)
+    return ViewScene(
+        view,
+        lines,
+        ee,
+        (xmin, xmax, ymin, ymax),
+        wire.units,
+        tips,
+        arm,
+        marks=marks,
+        fit_bounds=fit,
+    )
 
 
 def equal_scale_limits(
@@ -209,3 +272,34 @@ def limits_at(
     cx, cy = centre
     half_x, half_y = per_dot * nx / 2, per_dot * ny / 2
     return (cx - half_x, cx + half_x), (cy - half_y, cy + half_y)
+
+
+#: the room F leaves round the arm, a fraction of its size on every side
+FIT_MARGIN = 0.05
+
+
+def fit_framing_bounds(
+    bounds: tuple[float, float, float, float], least: float
+) -> tuple[float, float, float, float]:
+    """``bounds`` grown by ``FIT_MARGIN`` of their larger side on every side,
+    and to at least ``least`` across both ways (an arm seen end-on is a point)."""
+    xmin, xmax, ymin, ymax = bounds
+    size = max(xmax - xmin, ymax - ymin, least)
+    pad = FIT_MARGIN * size
+    cx, cy = (xmin + xmax) / 2, (ymin + ymax) / 2
+    half_x = max(xmax - xmin, least) / 2 + pad
+    half_y = max(ymax - ymin, least) / 2 + pad
+    return (cx - half_x, cx + half_x, cy - half_y, cy + half_y)
+
+
+def holds(
+    bounds: tuple[float, float, float, float],
+    centre: tuple[float, float],
+    per_dot: float,
+    cols: int,
+    rows: int,
+) -> bool:
+    """Whether the picture at ``centre`` and ``per_dot`` shows all of ``bounds``."""
+    (x0, x1), (y0, y1) = limits_at(centre, per_dot, cols, rows)
+    xmin, xmax, ymin, ymax = bounds
+    return x0 <= xmin and xmax <= x1 and y0 <= ymin and ymax <= y1

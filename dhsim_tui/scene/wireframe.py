@@ -1,4 +1,5 @@
-"""The arm in 3-D: links, pedestal, floor and each joint frame's axes."""
+"""The arm in 3-D: links, joints, pedestal, floor, the links' shadow on the
+floor and each joint frame's axes."""
 
 from __future__ import annotations
 
@@ -9,10 +10,16 @@ import numpy as np
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.workspace import WorkArea, reach, work_area
 
-#: a frame's axes are this fraction of the robot's reach long
-AXIS_FRACTION = 0.12
+#: a frame's axes are this fraction of the robot's reach long: short enough
+#: that the links, not the frames, are what the eye follows
+AXIS_FRACTION = 0.06
 #: each earlier frame at the same origin makes the next one's axes this much longer
 SHARED_ORIGIN_GROWTH = 0.5
+#: which frames' axes are drawn (``x`` cycles them): every frame, frame 0 and
+#: the last one (the tool's when it has one), or none
+FRAME_MODES = ("all", "ends", "none")
+#: how each mode is named on screen
+FRAME_MODE_NAMES = {"all": "every frame", "ends": "base and tool", "none": "none"}
 
 
 def axis_length(robot: Robot) -> float:
@@ -27,6 +34,9 @@ class Wireframe:
 
     ``axes[i, k]`` is the end of frame i's k-th axis (x, y, z) and
     ``origins[i]`` its start; frames are 0..n, then the tool if it has one.
+    ``joints[j]`` is where joint j + 1's axis is marked (the origin of the
+    frame it turns or slides along: frame j in standard D-H, frame j + 1 in
+    modified) and ``joint_types[j]`` says what it is.
     """
 
     links: np.ndarray  # (m, 3) polyline through frame origins, base to tool
@@ -38,6 +48,10 @@ class Wireframe:
     area: WorkArea
     below_floor: tuple[int, ...]  # frames whose origin is under the floor
     units: str = "mm"
+    joints: np.ndarray | None = None  # (n, 3)
+    joint_types: tuple[str, ...] = ()
+    #: the links dropped straight down onto the floor (the 3-D view's depth cue)
+    shadow: np.ndarray | None = None
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -45,6 +59,15 @@ class Wireframe:
         if not self.below_floor:
             return ()
         return (f"below the floor: frame {', '.join(str(i) for i in self.below_floor)}",)
+
+    def shown_frames(self, mode: str) -> np.ndarray:
+        """The indices (into ``origins`` and ``axes``) of the frames ``mode`` draws."""
+        count = len(self.origins)
+        if mode == "none" or count == 0:
+            return np.empty(0, dtype=np.int64)
+        if mode == "ends":
+            return np.unique(np.array([0, count - 1], dtype=np.int64))
+        return np.arange(count)
 
 
 def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
@@ -68,6 +91,11 @@ def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
         pedestal = np.array([[x, y, floor_z], [x, y, z]])
     links = origins if not robot.tool.is_identity else origins[: n + 1]
     below = tuple(int(i) for i in np.nonzero(origins[: n + 1, 2] < floor_z - tolerance)[0])
+    # joint i + 1 turns about (slides along) z of frame i (standard) or i + 1 (modified)
+    first = 0 if robot.convention == "standard" else 1
+    joints = origins[first : first + n].copy()
+    shadow = links.copy()
+    shadow[:, 2] = floor_z
     return Wireframe(
         links=links,
         origins=drawn_origins,
@@ -78,4 +106,7 @@ def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
         area=work_area(robot),
         below_floor=below,
         units=robot.units,
+        joints=joints,
+        joint_types=tuple(joint.type for joint in robot.joints),
+        shadow=shadow,
     )

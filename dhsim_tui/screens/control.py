@@ -29,6 +29,7 @@ from dhsim_tui.core.jog import (
     WORLD,
     cartesian_step_size,
     set_joint,
+    snapped,
     step_size,
 )
 from dhsim_tui.core.kinematics import read_out
@@ -50,19 +51,18 @@ from dhsim_tui.screens.control_keys import (
     CONTROL_BINDINGS,
     HELP_NOTES,
     JOINT_ACTIONS,
-    KEYS_LEGEND,
-    KEYS_LEGEND_ASCII,
+    KeyHints,
     help_rows,
 )
 from dhsim_tui.screens.control_views import ViewControls
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.motion import SmoothMotion
-from dhsim_tui.terminal import ascii_mode, shown
+from dhsim_tui.terminal import shown
 from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.cartesian_panel import TITLES as CARTESIAN_TITLES
 from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.widgets.joint_panel import JointPanel, JointRow
-from dhsim_tui.widgets.pose_panel import READOUTS, PosePanel
+from dhsim_tui.widgets.pose_panel import ALL_READOUTS, READOUTS, PosePanel
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
 
 __all__ = [
@@ -79,6 +79,9 @@ __all__ = [
 MIN_SIZE = (60, 18)
 #: Cartesian mode shows the pose panel too from this height on
 TALL_FOR_BOTH = 32
+#: from this height on the pose panel shows every read-out at once (OAT,
+#: roll-pitch-yaw and the 4×4 transform): a tall side panel has the room
+TALL_FOR_ALL_READOUTS = 44
 
 
 class ControlScreen(
@@ -123,7 +126,6 @@ class ControlScreen(
     selected: reactive[int] = reactive(0, init=False, repaint=False)
     step_level: reactive[int] = reactive(DEFAULT_STEP_LEVEL, init=False, repaint=False)
     readout: reactive[str] = reactive("oat", init=False, repaint=False)
-    view_index: reactive[int] = reactive(1, init=False, repaint=False)
     cartesian: reactive[bool] = reactive(False, init=False, repaint=False)
 
     def __init__(self, robot: Robot, renderer: str = "plotext", animate: bool = True) -> None:
@@ -167,10 +169,7 @@ class ControlScreen(
                 yield CartesianPanel(id="cartesian")
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
-                yield Static(
-                    KEYS_LEGEND_ASCII if ascii_mode(self.app) else KEYS_LEGEND,
-                    id="keys",
-                )
+                yield KeyHints(id="keys")
             yield ViewsPanel(self.renderer, id="views")
         yield Static("", id="too-small")
         yield Footer(compact=True)
@@ -184,7 +183,6 @@ class ControlScreen(
         self._ready = True
         self._joints.select(self.selected)
         self._update_step_caption()
-        self._views.select(self.view_index)
         self._apply_size(self.app.size.width, self.app.size.height)
         self._refresh_pose()
 
@@ -196,6 +194,8 @@ class ControlScreen(
         self.set_class(too_small, "-too-small")
         self.set_class(is_wide(width, height), "-wide")
         self.set_class(height < TALL_FOR_BOTH, "-short")
+        if self._ready and hasattr(self, "pose"):
+            self._show_now()  # every read-out at once, or one
         if too_small:
             self.query_one("#too-small", Static).update(
                 shown(
@@ -253,8 +253,10 @@ class ControlScreen(
 
     def _show_pose(self) -> None:
         branch = shown(printable(self._branches.caption), self.app) if self._branches else ""
+        tall = self.app.size.height >= TALL_FOR_ALL_READOUTS and not self.cartesian
+        readout = ALL_READOUTS if tall else self.readout
         self._pose_panel.show(
-            self.pose, self.readout, self.robot.units, self.dexterity, self.warnings, branch
+            self.pose, readout, self.robot.units, self.dexterity, self.warnings, branch
         )
         if self.cartesian:
             self._cartesian_panel.show(
@@ -297,10 +299,9 @@ class ControlScreen(
             return
         self._update_step_caption()
 
-    def watch_view_index(self) -> None:
-        if not self._ready:
-            return
-        self._views.select(self.view_index)
+    def on_views_panel_maximised(self, message: ViewsPanel.Maximised) -> None:
+        """The selected view over the whole screen: the side panel makes way."""
+        self.set_class(message.maximised, "-max")
 
     def _update_step_caption(self) -> None:
         if self.cartesian:
@@ -369,6 +370,26 @@ class ControlScreen(
             self.say("")
         if move.moved:
             self.q = move.q
+
+    # -- the mouse on the joints: the rows ask, the screen decides -------------
+    def on_joint_row_picked(self, message: JointRow.Picked) -> None:
+        """A click selects the joint (back in joint jogging); on its bar, or
+        dragged along it, the joint goes to the value under the pointer,
+        rounded to the current step and kept within its limits."""
+        index = message.row.index
+        if self.cartesian:
+            self.cartesian = False
+        self.selected = index
+        if message.value is not None:
+            self._interrupt()
+            self._move_to(index, snapped(self.robot, index, message.value, self.step_level))
+
+    def on_joint_row_wheeled(self, message: JointRow.Wheeled) -> None:
+        """The wheel over a joint steps it (and selects it)."""
+        if self.cartesian:
+            self.cartesian = False
+        self.selected = message.row.index
+        self.action_step(message.steps)
 
     def action_step_size(self, delta: int) -> None:
         self.step_level = max(0, min(len(REVOLUTE_STEPS_DEG) - 1, self.step_level + delta))

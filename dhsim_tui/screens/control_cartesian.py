@@ -15,6 +15,7 @@ from dhsim_tui.core.jog import (
     row_name,
 )
 from dhsim_tui.widgets.cartesian_panel import TITLES as CARTESIAN_TITLES
+from dhsim_tui.widgets.cartesian_panel import CartesianPanel
 
 
 class CartesianJogging:
@@ -24,9 +25,21 @@ class CartesianJogging:
     ``_show_now``, ``say`` and ``refresh_bindings``."""
 
     def action_row(self, delta: int) -> None:
-        self.cartesian_row = (self.cartesian_row + delta) % len(CARTESIAN_ROWS)
+        self._pick_row((self.cartesian_row + delta) % len(CARTESIAN_ROWS))
+
+    def _pick_row(self, row: int) -> None:
+        self.cartesian_row = row
         self._update_step_caption()
         self._show_now()
+
+    def on_cartesian_panel_row_picked(self, message: CartesianPanel.RowPicked) -> None:
+        """A click on a Cartesian row selects it."""
+        self._pick_row(message.row)
+
+    def on_cartesian_panel_wheeled(self, message: CartesianPanel.Wheeled) -> None:
+        """The wheel over a Cartesian row moves the tool along it."""
+        self._pick_row(message.row)
+        self.action_jog(message.steps)
 
     def action_jog(self, multiple: int) -> None:
         self._interrupt()

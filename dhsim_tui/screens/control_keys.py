@@ -2,40 +2,84 @@
 
 from __future__ import annotations
 
+from rich.text import Text
+from textual import events
 from textual.binding import Binding
+from textual.widgets import Static
 
 from dhsim_tui.core.jog import REVOLUTE_STEPS_DEG
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
+from dhsim_tui.terminal import ascii_mode
 
-KEYS_LEGEND = (
-    "[b]Keys[/]\n"
-    "↑ ↓  joint          ← →  step (shift ×10)\n"
-    "\\[ ]  step size      ⏎    exact value\n"
-    "h    home           p    next pose\n"
-    "v    read-out       c    Cartesian\n"
-    "P    save pose      m    smooth motion\n"
-    "tab 1-4  view       z    maximise view\n"
-    "+ - 0  zoom         a d w s  orbit 3-D\n"
-    "b    IK branch      f    world/tool frame\n"
-    "W    workspace      e    edit table\n"
-    "?    help           q    quit"
+#: the side panel's key hints: (keys, what they do); a pair is (Unicode,
+#: 7-bit ASCII) where the ASCII form differs
+Hint = tuple[str | tuple[str, str], str | tuple[str, str]]
+KEY_HINTS: tuple[Hint, ...] = (
+    (("↑ ↓", "up down"), "joint"),
+    (("← →", "left right"), ("step (shift ×10)", "step")),
+    ("[ ]", "step size"),
+    (("⏎", "enter"), "exact value"),
+    ("h", "home"),
+    ("p", "next pose"),
+    ("v", "read-out"),
+    ("c", "Cartesian"),
+    ("P", "save pose"),
+    ("m", "smooth motion"),
+    ("tab 1-4", "view"),
+    ("z", "maximise view"),
+    ("+ - 0", "zoom"),
+    ("F", "fit the arm"),
+    ("a d w s", "orbit 3-D"),
+    ("x", "frames drawn"),
+    ("b", "IK branch"),
+    ("f", "world/tool frame"),
+    ("W", "workspace"),
+    ("i", "save picture"),
+    ("e", "edit table"),
+    ("?", "help"),
+    ("q", "quit"),
+    ("mouse", "click, drag, wheel"),
 )
-#: the same in 7-bit ASCII
-KEYS_LEGEND_ASCII = (
-    "[b]Keys[/]\n"
-    "up down  joint      left right  step\n"
-    "\\[ ]  step size      enter  exact value\n"
-    "h    home           p    next pose\n"
-    "v    read-out       c    Cartesian\n"
-    "P    save pose      m    smooth motion\n"
-    "tab 1-4  view       z    maximise view\n"
-    "+ - 0  zoom         a d w s  orbit 3-D\n"
-    "b    IK branch      f    world/tool frame\n"
-    "W    workspace      e    edit table\n"
-    "?    help           q    quit"
-)
+#: the width of the left column of hints when two share a line
+HINT_COLUMN = 21
+
+
+def _hint(keys: str, words: str) -> str:
+    return f"{keys:<{max(5, len(keys) + 1)}}{words}"
+
+
+def keys_legend(ascii: bool, rows: int) -> Text:
+    """The key hints under a bold title: one a line when ``rows`` hold them
+    all, else two a line."""
+    pick = 1 if ascii else 0
+    hints = [
+        _hint(
+            keys[pick] if isinstance(keys, tuple) else keys,
+            words[pick] if isinstance(words, tuple) else words,
+        )
+        for keys, words in KEY_HINTS
+    ]
+    text = Text()
+    text.append("Keys", style="bold")
+    if rows - 1 >= len(hints):
+        for keys, words in KEY_HINTS:
+            keys = keys[pick] if isinstance(keys, tuple) else keys
+            words = words[pick] if isinstance(words, tuple) else words
+            text.append(f"\n{keys:<10}{words}")
+        return text
+    for left, right in zip(hints[::2], [*hints[1::2], ""], strict=False):
+        text.append(f"\n{left:<{HINT_COLUMN}}{right}".rstrip())
+    return text
+
+
+class KeyHints(Static):
+    """The key hints, laid out for the rows the side panel leaves them."""
+
+    def on_resize(self, event: events.Resize) -> None:
+        self.update(keys_legend(ascii_mode(self.app), event.size.height))
+
 
 #: joint jogging's arrow actions, and Cartesian jogging's (check_action shows one set)
 JOINT_ACTIONS = frozenset({"select", "step"})
@@ -75,6 +119,10 @@ VIEW_BINDINGS = [
             tooltip="Zoom out"),
     Binding("0", "zoom(0)", "Whole area", show=False, id="view.zoom_reset",
             tooltip="Back to the whole work area (reach + 30, floor at -base height)"),
+    Binding("F", "fit", "Fit", show=False, id="view.fit",
+            tooltip="Fit every view to the arm as it stands; again: the whole work area"),
+    Binding("x", "frames", "Frames", show=False, id="view.frames",
+            tooltip="Frame axes drawn: every frame, base and tool only, none"),
     Binding("a", "orbit(-1, 0)", "Orbit", show=False, id="view.orbit_left",
             tooltip="Turn the 3-D view: azimuth down"),
     Binding("d", "orbit(1, 0)", "Orbit", show=False, id="view.orbit_right",
@@ -200,6 +248,14 @@ CONTROL_BINDINGS = [
         tooltip="Jog in the WORLD frame: along and about the world's X, Y, Z",
     ),
     Binding(
+        "i",
+        "app.save_picture",
+        "Picture",
+        show=False,
+        id="app.save_picture",
+        tooltip="Save the screen as an SVG picture in the working folder (for a report)",
+    ),
+    Binding(
         "W",
         "workspace",
         "Workspace",
@@ -237,6 +293,9 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
         ("tab, 1 2 3 4", "select the top, front, side or 3-D view"),
         ("z", "maximise the selected view (again: back)"),
         ("+ - 0", "zoom in / out about the arm; 0: the whole work area"),
+        ("F", "fit every view to the arm as it stands (again, or 0: the work area)"),
+        ("x", "frame axes drawn: every frame → base and tool only → none"),
+        ("i", "save the screen as an SVG picture in the working folder (for a report)"),
         ("a d, w s", "orbit the 3-D view: azimuth, elevation (15° a press)"),
         ("c", "joint ⇄ Cartesian jogging: move the tool along X, Y, Z, turn it about them"),
         ("f", "Cartesian: along/about the world's X, Y, Z ⇄ the tool's own x, y, z (TOOL)"),
@@ -252,9 +311,18 @@ def help_rows(robot: Robot) -> list[tuple[str, str]]:
 
 
 HELP_NOTES = (
-    "\nViews: red, green, blue = each joint frame's x, y, z axes (without colour, "
-    "letters at their tips); ◆ = the tool. Top, front and side share one scale, "
-    "the same on both axes, with ticks in the robot's unit. Frames that share an "
-    "origin are drawn with longer axes.\nOAT (Unimation VAL): O = azimuth of the "
-    "approach vector, A = its depression below horizontal, T = roll about it."
+    "\nViews: the links are the orange bars, ● a revolute joint, ■ a prismatic "
+    "one, ◆ the tool; red, green, blue = each joint frame's x, y, z axes "
+    "(without colour, letters at their tips; x shows fewer). Top, front and "
+    "side share one scale, the same on both axes, with ticks in the robot's "
+    "unit (F fits each view to the arm instead). Frames that share an origin "
+    "are drawn with longer axes.\n"
+    "Mouse: click a joint to select it; click or drag along its bar to set it "
+    "(rounded to the step); the wheel over a joint steps it. Click a view to "
+    "select it, double-click to maximise it, the wheel zooms, a drag turns "
+    "the 3-D view. Shift+drag selects text to copy, as in any terminal.\n"
+    "OAT (Unimation VAL): O = azimuth of the approach vector, A = its "
+    "depression below horizontal, T = roll about it.\n"
+    "μ (manipulability): how freely the tool can move, from 0 (singular: some "
+    "direction is lost) up; yellow below 0.02, red below 0.001."
 )

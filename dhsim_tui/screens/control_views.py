@@ -1,5 +1,7 @@
 """The view keys of the control screen: select a view (``tab``, ``1``-``4``),
-maximise it (``z``), zoom (``+ - 0``) and orbit the 3-D view (``a d w s``).
+maximise it (``z``), zoom (``+ - 0``), fit the arm (``F``), choose the frames
+drawn (``x``) and orbit the 3-D view (``a d w s``). The views panel holds
+all of that; these only hand it the keys.
 """
 
 from __future__ import annotations
@@ -9,14 +11,18 @@ from dhsim_tui.scene.oblique import Orbit
 
 
 class ViewControls:
-    """Mixed into the control screen, which has ``view_index`` and ``_views``
-    (the views panel)."""
+    """Mixed into the control screen, which has ``_views`` (the views panel)."""
+
+    @property
+    def view_index(self) -> int:
+        """The selected view (the views panel's)."""
+        return self._views.selected
 
     def action_next_view(self) -> None:
-        self.view_index = (self.view_index + 1) % len(VIEWS)
+        self._views.select_next()
 
     def action_view(self, index: int) -> None:
-        self.view_index = index
+        self._views.select(index)
 
     def action_maximise(self) -> None:
         self._views.toggle_maximise()
@@ -27,8 +33,15 @@ class ViewControls:
         else:
             self._views.zoom_by(steps)
 
+    def action_fit(self) -> None:
+        self._views.toggle_fit()
+
+    def action_frames(self) -> None:
+        self._views.cycle_frames()
+
     def action_orbit(self, azimuth: int, elevation: int) -> None:
         """Turn the 3-D view (and show it, if it is hidden)."""
-        if not self._views.views[3].display or not self._views.views[3].size.area:
-            self.view_index = 3
+        iso = self._views.views[len(VIEWS) - 1]
+        if not iso.display or not iso.size.area:
+            self._views.select(len(VIEWS) - 1)
         self._views.orbit_by(azimuth * Orbit.STEP, elevation * Orbit.STEP)

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 
 from rich.cells import cell_len
 from rich.text import Text
+from textual import events
 from textual.coordinate import Coordinate
 from textual.widgets import DataTable
 
@@ -128,13 +129,29 @@ def _width(cell: Cell) -> int:
 
 
 class FittedTable(DataTable):
-    """A DataTable whose columns always fit their widest cell (or label)."""
+    """A DataTable whose columns always fit their widest cell (or label).
+
+    The mouse: a click puts the cursor on a cell, a double click edits it
+    (as enter does). Textual's table would also edit on a single click of
+    the cell the cursor is on, which caught people clicking twice slowly.
+    """
 
     def __init__(self, **kwargs) -> None:
         super().__init__(**kwargs)
         self._labels: tuple[Cell, ...] = ()
         self._widths: list[int] = []
         self._rows: list[tuple[str, tuple[Cell, ...]]] = []
+
+    async def _on_click(self, event: events.Click) -> None:
+        meta = event.style.meta
+        row, column = meta.get("row", -1), meta.get("column", -1)
+        if row < 0 or column < 0 or meta.get("out_of_bounds", False):
+            return  # a header or the space beside the cells: Textual's own handling
+        event.prevent_default()  # not Textual's: it edits on one click
+        event.stop()
+        self.cursor_coordinate = Coordinate(row, column)
+        if event.chain >= 2:
+            self._post_selected_message()
 
     def show(self, labels: Sequence[Cell], rows: Sequence[tuple[str, Sequence[Cell]]]) -> None:
         """Show ``rows`` of (key, cells); rewrite only what changed."""

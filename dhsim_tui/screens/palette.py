@@ -27,6 +27,7 @@ from textual.markup import escape
 from dhsim_tui.core.jog import TOOL, WORLD
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.validation import fmt
+from dhsim_tui.scene.wireframe import FRAME_MODE_NAMES, FRAME_MODES
 from dhsim_tui.screens.control import ControlScreen
 from dhsim_tui.screens.editor import EditorScreen
 from dhsim_tui.terminal import ascii_mode, shown
@@ -35,6 +36,8 @@ from dhsim_tui.widgets.views_panel import ViewsPanel
 if TYPE_CHECKING:
     from dhsim_tui.app import DhsimApp
 
+#: the command that writes the screen to a file (found by "picture", "screen", "plot")
+SAVE_PICTURE = "Save picture: a screenshot or plot of the screen (SVG)"
 #: the views' names, in the order of the keys 1 2 3 4
 VIEW_NAMES = ("top", "front", "side", "3-D")
 #: what the themes are, by --theme's names (app.THEMES)
@@ -126,6 +129,20 @@ def _control_commands(app: DhsimApp, screen: ControlScreen) -> Iterator[PaletteC
             "back to the whole work area (0)",
             lambda: screen.action_zoom(0),
         )
+    if views.fit:
+        yield PaletteCommand(
+            "View: the work area", "every view back to the work area (F)", screen.action_fit
+        )
+    else:
+        yield PaletteCommand(
+            "View: fit the arm", "every view fitted to the arm as it stands (F)", screen.action_fit
+        )
+    following = FRAME_MODES[(FRAME_MODES.index(views.frames) + 1) % len(FRAME_MODES)]
+    yield PaletteCommand(
+        f"View: frames drawn: {FRAME_MODE_NAMES[following]}",
+        f"the frame axes drawn: now {FRAME_MODE_NAMES[views.frames]} (x)",
+        screen.action_frames,
+    )
     if screen.cloud_state == "off":
         yield PaletteCommand(
             "View: show the workspace",
@@ -207,6 +224,11 @@ def _editor_commands(app: DhsimApp, screen: EditorScreen) -> Iterator[PaletteCom
 
 # -- everywhere ---------------------------------------------------------------------
 def _app_commands(app: DhsimApp) -> Iterator[PaletteCommand]:
+    yield PaletteCommand(
+        SAVE_PICTURE,
+        "this screen as an SVG in the working folder, for a report (i on the simulator)",
+        app.save_picture,
+    )
     for name, theme in app.theme_choices().items():
         if app.theme != theme:
             yield PaletteCommand(

@@ -3,11 +3,15 @@ row, repainting only the cells that changed since the last frame."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from rich.segment import Segment
 from rich.style import Style
 from rich.text import Text
+from textual import events
 from textual.geometry import Region
+from textual.message import Message
 from textual.strip import Strip
 from textual.widget import Widget
 
@@ -47,6 +51,33 @@ class ArmView(Widget):
     }
     ArmView.-selected { border: round $accent; border-title-color: $accent; }
     """
+    #: a drag orbits the 3-D view: no text selection in the pictures
+    ALLOW_SELECT = False
+
+    @dataclass
+    class Pressed(Message):
+        """A click on the view: select it (``double``: and maximise it)."""
+
+        view: ArmView
+        double: bool = False
+
+    @dataclass
+    class Wheel(Message):
+        """The mouse wheel over the view: zoom in (steps > 0) or out."""
+
+        view: ArmView
+        steps: int
+
+    @dataclass
+    class Dragged(Message):
+        """The mouse moved this far (cells) with the button held down."""
+
+        view: ArmView
+        dx: int
+        dy: int
+
+        def can_replace(self, message: Message) -> bool:
+            return False  # every part of a drag counts: they add up
 
     def __init__(self, view: View, renderer: str = "plotext", *, id: str | None = None) -> None:
         super().__init__(id=id, classes="view")
@@ -62,6 +93,7 @@ class ArmView(Widget):
         self._strips: dict[int, Strip] = {}
         self._styles: list[Style] | None = None
         self._base_style = Style()
+        self._drag_from: tuple[int, int] | None = None
 
     # -- what the rest of the app sees ---------------------------------------
     @property
@@ -179,6 +211,37 @@ class ArmView(Widget):
                 segments.append(Segment(line[start:x], base if role == NO_ROLE else styles[role]))
                 start = x
         return Strip(segments, len(line))
+
+    # -- the mouse -----------------------------------------------------------
+    def on_click(self, event: events.Click) -> None:
+        event.stop()
+        self.post_message(self.Pressed(self, double=event.chain == 2))
+
+    def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
+        event.stop()
+        self.post_message(self.Wheel(self, 1))
+
+    def on_mouse_scroll_down(self, event: events.MouseScrollDown) -> None:
+        event.stop()
+        self.post_message(self.Wheel(self, -1))
+
+    def on_mouse_down(self, event: events.MouseDown) -> None:
+        if event.button == 1:
+            self._drag_from = (event.screen_x, event.screen_y)
+            self.capture_mouse()
+
+    def on_mouse_move(self, event: events.MouseMove) -> None:
+        start = self._drag_from
+        if start is None or self.app.mouse_captured is not self:
+            return
+        dx, dy = event.screen_x - start[0], event.screen_y - start[1]
+        if dx or dy:
+            self._drag_from = (event.screen_x, event.screen_y)
+            self.post_message(self.Dragged(self, dx, dy))
+
+    def on_mouse_up(self, event: events.MouseUp) -> None:
+        self._drag_from = None
+        self.release_mouse()
 
     def describe(self) -> Text:
         """The picture as plain text (for tests)."""

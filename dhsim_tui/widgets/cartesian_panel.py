@@ -15,8 +15,11 @@ repaints only the rows that changed, each up to its last changed column.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 from rich.text import Text
+from textual import events
+from textual.message import Message
 
 from dhsim_tui.core.jog import CARTESIAN_ROWS, TOOL, WORLD
 from dhsim_tui.core.model import LENGTH_DECIMALS
@@ -70,8 +73,42 @@ class CartesianPanel(TextPanel):
     selected row."""
 
     DEFAULT_CSS = "CartesianPanel { height: 8; }"
+    ALLOW_SELECT = False
 
     _frame: str | None = None
+
+    @dataclass
+    class RowPicked(Message):
+        """A click on a row: select it."""
+
+        row: int
+
+    @dataclass
+    class Wheeled(Message):
+        """The wheel over a row: move the tool that many steps along it."""
+
+        row: int
+        steps: int
+
+    def _row_at(self, y: int) -> int | None:
+        return y if 0 <= y < len(CARTESIAN_ROWS) else None
+
+    def on_click(self, event: events.Click) -> None:
+        row = self._row_at(event.y)
+        if row is not None:
+            self.post_message(self.RowPicked(row))
+
+    def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
+        self._wheel(event, 1)
+
+    def on_mouse_scroll_down(self, event: events.MouseScrollDown) -> None:
+        self._wheel(event, -1)
+
+    def _wheel(self, event: events.MouseEvent, steps: int) -> None:
+        event.stop()
+        row = self._row_at(event.y)
+        if row is not None:
+            self.post_message(self.Wheeled(row, steps))
 
     def show(
         self,

@@ -9,15 +9,21 @@ last column that changed.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from rich.cells import cell_len
 from rich.text import Text
+from textual import events
 from textual.containers import VerticalScroll
 from textual.geometry import Region
+from textual.message import Message
 from textual.widgets import Static
 
 from dhsim_tui import terminal
 from dhsim_tui.core.model import LENGTH_DECIMALS, Joint
 
+#: columns before the bar: the marker, a space, the label in four, a space
+BAR_START = 7
 #: the bar's glyphs: ends, track, home, value, value on its min / max limit
 BAR_UNICODE = ("├", "┤", "─", "┊", "●", "◀", "▶")
 BAR_ASCII = ("|", "|", "-", ":", "#", "<", ">")
@@ -82,14 +88,52 @@ def changed_extent(old: Text | None, new: Text) -> int | None:
     return max(cell_len(a[: last + 1]), cell_len(b[: last + 1]))
 
 
+def bar_value(joint: Joint, column: int, width: int) -> float:
+    """The joint value at ``column`` of a ``width``-cell bar (its ends are
+    the limits; the inverse of where :func:`slider` puts the marker)."""
+    inner = max(width, 5) - 2
+    cell = min(inner - 1, max(0, column - 1))
+    return joint.min + (joint.max - joint.min) * cell / max(inner - 1, 1)
+
+
 class JointRow(Static):
     """One joint: label, bar, value. Repaints only when its own value changes,
-    and then only the columns up to the last one that changed."""
+    and then only the columns up to the last one that changed.
+
+    The mouse, as on the seed's sliders: a click selects the joint, a click
+    or drag on the bar asks for the value under the pointer, the wheel asks
+    for a step; the screen decides (it rounds to the step, keeps the limits).
+    """
 
     DEFAULT_CSS = """
     JointRow { height: 1; }
     JointRow.-selected { background: $accent 30%; text-style: bold; }
     """
+    ALLOW_SELECT = False  # a drag moves the joint, not a text selection
+
+    @dataclass
+    class Picked(Message):
+        """A click on the row (``value`` None) or on its bar, or a drag along
+        the bar (``value``: the joint value under the pointer)."""
+
+        row: JointRow
+        value: float | None = None
+
+        def can_replace(self, message: Message) -> bool:
+            # a drag's newest position is the one that counts
+            return (
+                isinstance(message, JointRow.Picked)
+                and message.row is self.row
+                and message.value is not None
+                and self.value is not None
+            )
+
+    @dataclass
+    class Wheeled(Message):
+        """The wheel over the row: ``steps`` steps up (> 0) or down."""
+
+        row: JointRow
+        steps: int
 
     def __init__(self, number: int, joint: Joint, units: str, value: float) -> None:
         super().__init__()
@@ -98,6 +142,50 @@ class JointRow(Static):
         self.units = units
         self.value = value
         self._shown: tuple[tuple[int, bool, bool], Text] | None = None
+        self._dragging = False
+
+    @property
+    def index(self) -> int:
+        """The joint's place in the robot (0-based)."""
+        return self.number - 1
+
+    def _bar_width(self) -> int:
+        ascii = ascii_mode(self)
+        return self.size.width - len(format_value(self.joint, self.value, self.units, ascii)) - 8
+
+    def _value_at(self, x: int) -> float | None:
+        """The value under column ``x``, or None off the bar."""
+        width = max(self._bar_width(), 5)
+        if BAR_START <= x < BAR_START + width:
+            return bar_value(self.joint, x - BAR_START, width)
+        return None
+
+    def on_mouse_down(self, event: events.MouseDown) -> None:
+        if event.button != 1:
+            return
+        value = self._value_at(event.x)
+        self.post_message(self.Picked(self, value))
+        if value is not None:
+            self._dragging = True
+            self.capture_mouse()
+
+    def on_mouse_move(self, event: events.MouseMove) -> None:
+        if self._dragging and self.app.mouse_captured is self:
+            width = max(self._bar_width(), 5)
+            column = min(max(event.x, BAR_START), BAR_START + width - 1)
+            self.post_message(self.Picked(self, bar_value(self.joint, column - BAR_START, width)))
+
+    def on_mouse_up(self, event: events.MouseUp) -> None:
+        self._dragging = False
+        self.release_mouse()
+
+    def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
+        event.stop()
+        self.post_message(self.Wheeled(self, 1))
+
+    def on_mouse_scroll_down(self, event: events.MouseScrollDown) -> None:
+        event.stop()
+        self.post_message(self.Wheeled(self, -1))
 
     def set_value(self, value: float) -> None:
         if value == self.value:
@@ -123,7 +211,7 @@ class JointRow(Static):
         ascii = ascii_mode(self)
         label = self.joint.label(self.number)
         value_text = format_value(self.joint, self.value, self.units, ascii)
-        bar_width = self.size.width - len(value_text) - 8
+        bar_width = self._bar_width()
         at_limit = not self.joint.min < self.value < self.joint.max
         marker = (">" if ascii else "▶") if self.has_class("-selected") else " "
         text = Text(f"{marker} {label:<4} ")

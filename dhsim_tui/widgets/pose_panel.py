@@ -19,10 +19,21 @@ from dhsim_tui.core.model import LENGTH_DECIMALS
 from dhsim_tui.widgets.joint_panel import ascii_mode, changed_extent
 
 READOUTS = ("oat", "rpy", "matrix")
+#: every read-out at once: what a tall side panel shows (v then has nothing to switch)
+ALL_READOUTS = "all"
 #: the key that switches the read-out, named where it acts (the footer has no room)
 READOUT_KEY = "v: next read-out"
-READOUT_TITLES = {"oat": "XYZ / OAT", "rpy": "XYZ / roll pitch yaw", "matrix": "4×4 transform"}
-READOUT_TITLES_ASCII = {**READOUT_TITLES, "matrix": "4x4 transform"}
+READOUT_TITLES = {
+    "oat": "XYZ / OAT",
+    "rpy": "XYZ / roll pitch yaw",
+    "matrix": "4×4 transform",
+    ALL_READOUTS: "XYZ / OAT / roll pitch yaw / 4×4",
+}
+READOUT_TITLES_ASCII = {
+    **READOUT_TITLES,
+    "matrix": "4x4 transform",
+    ALL_READOUTS: "XYZ / OAT / roll pitch yaw / 4x4",
+}
 
 
 #: labels are right-aligned in this many columns, one more than the longest
@@ -39,6 +50,15 @@ def pose_text(pose: EndEffector, readout: str, units: str, ascii: bool = False) 
     ``ascii``: "deg" for the degree sign, "x" for the multiplication sign."""
     degree = "deg" if ascii else "°"
     text = Text()
+    if readout == ALL_READOUTS:
+        text.append_text(pose_text(pose, "oat", units, ascii))
+        angles = pose_text(pose, "rpy", units, ascii).split("\n", allow_blank=True)[3:]
+        for line in angles:
+            text.append("\n")
+            text.append_text(line)
+        text.append("\n")
+        text.append_text(pose_text(pose, "matrix", units, ascii))
+        return text
     if readout == "matrix":
         for row in pose.matrix:
             text.append("".join(_number(v, 4, 8) for v in row[:3]) + _number(row[3], 2, 11) + "\n")
@@ -82,6 +102,7 @@ class PosePanel(TextPanel):
 
     _titles: tuple[str, str] | None = None
     _branch = ""
+    _grows = False
 
     def show(
         self,
@@ -97,20 +118,22 @@ class PosePanel(TextPanel):
         Plain text, never markup."""
         ascii = ascii_mode(self)
         title = (READOUT_TITLES_ASCII if ascii else READOUT_TITLES)[readout]
+        subtitle = "" if readout == ALL_READOUTS else READOUT_KEY
         # a border title repaints the whole panel: set only when it changes
-        if self._titles != (title, READOUT_KEY):
-            self._titles = (title, READOUT_KEY)
+        if self._titles != (title, subtitle):
+            self._titles = (title, subtitle)
             self.border_title = title
-            self.border_subtitle = READOUT_KEY
+            self.border_subtitle = subtitle
         text = pose_text(pose, readout, units, ascii)
         text.append("\n")
         text.append_text(health_text(dexterity, warnings, ascii))
         if branch:
             text.append("\n")
             text.append(branch, style="bold")
-        if branch != self._branch:  # a line or two more (wrapped), or back
-            self._branch = branch
-            self.styles.height = "auto" if branch else None
+        grows = bool(branch) or readout == ALL_READOUTS
+        if (branch, grows) != (self._branch, self._grows):  # lines more (wrapped), or back
+            self._branch, self._grows = branch, grows
+            self.styles.height = "auto" if grows else None
             self.refresh(layout=True)
         refresh_changed_lines(self, self._text, text)
         self._text = text

@@ -1,10 +1,14 @@
 """The app as a snapshot test loads it: the bundled Puma 560 at home."""
 
+from rich.color import ColorSystem
+
 from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
 
 robot, path = load_robot("puma560")
 app = DhsimApp(robot, path, animate=False)  # moves land at once: deterministic
+# the same pictures whatever TERM the tests run under: a truecolor terminal
+app.console._color_system = ColorSystem.TRUECOLOR
 
 if __name__ == "__main__":
     app.run()
