@@ -10,6 +10,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from rich.text import Text
 from textual import work
 from textual.binding import Binding
 from textual.command import CommandPalette
@@ -23,7 +24,7 @@ from dhsim_tui.core import editing
 from dhsim_tui.core.atomicfile import write_file
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import MAX_JOINTS, Robot
-from dhsim_tui.core.recovery import Recovery, source_key, write_recovery
+from dhsim_tui.core.recovery import Recovery, crash_report, source_key, write_recovery
 from dhsim_tui.core.robotfile import (
     FileChangedError,
     FileStamp,
@@ -40,7 +41,8 @@ from dhsim_tui.screens.export_dialog import export_flow
 from dhsim_tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
 from dhsim_tui.screens.palette import DhsimCommands, DhsimPalette, screens_with_commands
 from dhsim_tui.screens.recover import offer_recovery
-from dhsim_tui.screens.save_flow import SaveResult, is_bundled, save_flow
+from dhsim_tui.screens.save_flow import is_bundled, reapply_edits, save_flow
+from dhsim_tui.screens.start import StartScreen
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.screenshot import export_svg
 from dhsim_tui.signals import DhsimDriver, SignalGuard
@@ -71,6 +73,14 @@ def _text_of(path: Path | None) -> str | None:
         return path.read_text(encoding="utf-8") if path is not None else None
     except (OSError, UnicodeDecodeError, ValueError):
         return None
+
+
+def crash_line(error: BaseException) -> str:
+    """The one line an unexpected error ends dhsim with; the traceback is
+    written to a crash report file (named in the line) when it can be."""
+    where = crash_report(error)
+    report = f"; the details are in {where}" if where else ""
+    return printable(f"dhsim: internal error: {type(error).__name__}: {error}{report}")
 
 
 def _joint_count(text: str) -> int:
@@ -170,6 +180,7 @@ class DhsimApp(KeysInOrder):
         self.recovery = recovery
         #: lines to print after the app has ended (where unsaved work was kept)
         self.exit_messages: list[str] = []
+        self._palette: DhsimPalette | None = None  # the last one opened
         self.sub_title = robot.name
 
     def get_key_display(self, binding: Binding) -> str:
@@ -182,8 +193,13 @@ class DhsimApp(KeysInOrder):
         return DhsimDriver if driver is LinuxDriver else driver
 
     def on_mount(self) -> None:
-        # pushed (not the default screen) so that switch_screen can replace it
-        self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
+        # pushed (not the default screen) so that switch_screen can replace it;
+        # the editor's own start shows no simulator behind its first question
+        if self.start == "control":
+            self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
+        else:
+            what = "a new robot" if self.start == "new" else printable(self.robot.name)
+            self.push_screen(StartScreen(shown(f"dhsim: opening the editor on {what}…", self)))
         if self.recovery:
             self._start_with_recovery()
         else:
@@ -299,22 +315,30 @@ class DhsimApp(KeysInOrder):
     def _editor_closed(
         self, result: tuple[Robot, Path | None] | None, stamp: FileStamp | None = None
     ) -> None:
-        """After the editor: the simulator runs the saved robot."""
-        if result is None:
-            return
-        robot, path = result
-        self.saved_robot = robot
-        self.stamp = stamp if path is not None and not is_bundled(path) else None
-        if path is not None:  # saved: no longer an import without a file
-            self.new_text = self.imported_from = None
-        if (robot, path) != (self.robot, self.robot_path):
-            self._run(robot, path)
+        """After the editor: the simulator runs the saved robot (or, the first
+        time after ``dhsim edit``/``new``, the robot it started with)."""
+        if result is not None:
+            robot, path = result
+            self.saved_robot = robot
+            self.stamp = stamp if path is not None and not is_bundled(path) else None
+            if path is not None:  # saved: no longer an import without a file
+                self.new_text = self.imported_from = None
+            if (robot, path) != (self.robot, self.robot_path):
+                self._run(robot, path)
+                return
+        if isinstance(self._simulator_place(), StartScreen):
+            self._run(self.robot, self.robot_path)
 
     def _run(self, robot: Robot, path: Path | None) -> None:
         """The simulator on another robot (after the editor, or a reload)."""
         self.robot, self.robot_path = robot, path
         self.sub_title = robot.name
         self.switch_screen(ControlScreen(robot, self.renderer, self.animate))
+
+    def _simulator_place(self) -> object:
+        """The screen the simulator runs on: the first one pushed."""
+        stack = self.screen_stack
+        return stack[1] if len(stack) > 1 else None
 
     def keep_robot(self, robot: Robot) -> Path | None:
         """The simulator changed the robot (a saved pose): keep it, and write it
@@ -338,9 +362,11 @@ class DhsimApp(KeysInOrder):
     async def save_running_robot(self, save_as: bool = False) -> bool:
         """Save the simulator's robot (its poses) with the UI's save flow: a
         name for a bundled, new or imported robot (or ``save_as``), a question
-        when the file changed on disk. True once nothing is unsaved (saved, or
-        reloaded by choice)."""
+        when the file changed on disk. True once nothing is unsaved (saved;
+        a reload puts the poses kept here back on the file's robot, which
+        then are unsaved again)."""
         path = self.robot_path
+        base, mine = self.saved_robot, self.robot
         result = await save_flow(
             self,
             self.robot,
@@ -351,14 +377,14 @@ class DhsimApp(KeysInOrder):
         )
         if result is None:
             return False
-        self._saved(result)
-        return True
-
-    def _saved(self, result: SaveResult) -> None:
         self.saved_robot, self.stamp, self.robot_path = result.robot, result.stamp, result.path
         self.new_text = self.imported_from = None
-        if result.kind == "reloaded":  # the file's robot, by the user's choice
-            self._run(result.robot, result.path)
+        if result.kind == "reloaded":  # the file's robot, with my poses on top
+            again = await reapply_edits(self, base, mine, result.robot)
+            self._run(again.robot, result.path)  # mine as it was, if they would not combine
+            self._say(f"reloaded {result.path}: {again.message}", not again.combined)
+            return not self.has_unsaved_poses
+        return True
 
     @work(exclusive=True, group="modal")
     async def _save_running_robot(self) -> None:
@@ -465,15 +491,19 @@ class DhsimApp(KeysInOrder):
         return True
 
     def _palette_allowed(self) -> bool:
+        """Not over a dialog, and not while a palette is opening, open or
+        still leaving the screen (ctrl+p, escape, ctrl+p in one read)."""
         return (
             self.use_command_palette
             and not CommandPalette.is_open(self)
+            and (self._palette is None or self._palette.gone)
             and isinstance(self.screen, screens_with_commands())
         )
 
     def action_command_palette(self) -> None:
         if self._palette_allowed():
-            self.push_screen(DhsimPalette())
+            self._palette = DhsimPalette()
+            self.push_screen(self._palette)
 
     def theme_choices(self) -> dict[str, str]:
         """--theme's names and the Textual themes they stand for."""
@@ -533,16 +563,25 @@ class DhsimApp(KeysInOrder):
                 self.exit_messages = self.keep_unsaved_work()
 
     def _handle_exception(self, error: Exception) -> None:
-        """An unexpected error ends the app (status 1): keep unsaved work first."""
+        """An unexpected error ends the app (status 1): keep unsaved work
+        first, and end with one line (the traceback goes to a crash report
+        file, never to the screen)."""
         self._keep_before_crash()
-        super()._handle_exception(error)
+        self._return_code = 1
+        if self._exception is None:  # Pilot re-raises it in tests
+            self._exception = error
+            self._exception_event.set()
+        self._exit_renderables.append(Text(crash_line(error)))
+        self._close_messages_no_wait()
 
     def panic(self, *renderables) -> None:
         """Textual's other way out after an error (e.g. its input thread failed):
-        keep unsaved work, and end with status 1 (Textual leaves it at 0)."""
+        keep unsaved work, and end with status 1 (Textual leaves it at 0) and
+        one line."""
         self._keep_before_crash()
         self._return_code = 1  # no public setter; exit() would not stop a panic
-        super().panic(*renderables)
+        text = " ".join(str(r) for r in renderables if isinstance(r, str))
+        super().panic(Text(crash_line(RuntimeError(text or "Textual stopped"))))
 
     async def action_quit(self) -> None:
         """Quit, unless something is not saved: then ask, save, discard or stay.

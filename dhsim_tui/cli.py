@@ -6,6 +6,9 @@ stdin and stdout are a terminal. Every bad input ends as one line on stderr
 and exit status 2, never a traceback; an unexpected error as one line and
 exit status 1. Whatever the line quotes from the user or a file is passed
 through :func:`printable`, so no control character reaches the terminal.
+Output that cannot be written (a full disk, standard output closed) is one
+line and status 2 as well; a reader that stops early (``dhsim list | head
+-1``) is not an error. An option given twice is refused, not overridden.
 """
 
 from __future__ import annotations
@@ -43,9 +46,65 @@ class UsageError(Exception):
     """A command line argparse could not accept."""
 
 
+class OutputError(Exception):
+    """Standard output cannot be written; the message says why."""
+
+
+class _StoreOnce(argparse._StoreAction):
+    """An option that takes a value refuses a second one: ``--q 1,2 --q 3,4``
+    would otherwise keep the last without a word."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        given = vars(namespace).setdefault("_options_given", set())
+        if option_string is not None and self.dest in given:
+            raise argparse.ArgumentError(self, "given more than once; give it once")
+        given.add(self.dest)
+        super().__call__(parser, namespace, values, option_string)
+
+
 class _Parser(argparse.ArgumentParser):
+    """Every dhsim parser: errors in one line, options with a value given once."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+
     def error(self, message: str):  # one line, no usage dump
         raise UsageError(f"{self.prog}: error: {message} (see '{self.prog} --help')")
+
+
+class _Output:
+    """``sys.stdout`` while a command runs: a write or flush that fails
+    (other than for a closed pipe) is an :class:`OutputError` saying why."""
+
+    def __init__(self, stream) -> None:
+        self.stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return self.stream.write(text)
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            raise OutputError(_reason(exc)) from None
+
+    def flush(self) -> None:
+        try:
+            self.stream.flush()
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            raise OutputError(_reason(exc)) from None
+
+    def __getattr__(self, name: str):
+        return getattr(self.stream, name)
+
+
+def _reason(exc: BaseException) -> str:
+    """``no space left on device``: the system's words, as part of a sentence."""
+    text = getattr(exc, "strerror", None) or str(exc) or type(exc).__name__
+    return printable(text[:1].lower() + text[1:])
 
 
 def _glue_negative_values(argv: list[str]) -> list[str]:
@@ -244,25 +303,50 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     _escape_unencodable(sys.stdout)
     _escape_unencodable(sys.stderr)
+    if sys.stdout is None:  # started with descriptor 1 closed (`dhsim ... >&-`)
+        if sys.stderr is not None:
+            print("dhsim: cannot write the output: standard output is closed", file=sys.stderr)
+        return EXIT_USAGE
+    stdout = sys.stdout
+    sys.stdout = _Output(stdout)  # type: ignore[assignment]
     try:
-        if args_list and args_list[0] in ("-h", "--help"):
-            print(MAIN_HELP)
-            return 0
-        if args_list and args_list[0] == "--version":
-            print(f"dhsim {__version__}")
-            return 0
-        subs = _subparsers()
+        return _run(args_list, stdout)
+    finally:
+        if isinstance(sys.stdout, _Output):
+            sys.stdout = sys.stdout.stream
+
+
+def _command(args_list: list[str], stdout) -> int:
+    """Parse the command line and run the command; its exit status."""
+    if args_list and args_list[0] in ("-h", "--help"):
+        print(MAIN_HELP)
+        return 0
+    if args_list and args_list[0] == "--version":
+        print(f"dhsim {__version__}")
+        return 0
+    subs = _subparsers()
+    try:
         if args_list and args_list[0] in subs:
             parser = subs[args_list[0]]
             args = parser.parse_args(_glue_negative_values(args_list[1:]))
         else:
             args = _main_parser().parse_args(args_list)
-        if args.func in INTERACTIVE and not has_terminal():
+    except SystemExit as exc:  # argparse after printing a command's --help
+        return exc.code if isinstance(exc.code, int) else 0
+    if args.func in INTERACTIVE:
+        sys.stdout = stdout  # the simulator's terminal, as it was given
+        if not has_terminal():
             print(NEEDS_TERMINAL, file=sys.stderr)
             return EXIT_USAGE
-        with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
-            status = args.func(args)
-        sys.stdout.flush()  # a closed pipe shows here, not in Python's exit handler
+    with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
+        return args.func(args)
+
+
+def _run(args_list: list[str], stdout) -> int:
+    """Run one command; every failure ends here as one line and a status."""
+    try:
+        status = _command(args_list, stdout)
+        sys.stdout.flush()  # a closed pipe or a full disk shows here, not at exit
         return status
     except UsageError as exc:
         print(printable(str(exc)), file=sys.stderr)
@@ -275,6 +359,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # e.g. `dhsim list | head -1`
         _silence_stdout()
         return 0
+    except OutputError as exc:  # e.g. `dhsim fk puma560 > /dev/full`
+        _silence_stdout()  # what is still buffered goes nowhere at exit, quietly
+        print(f"dhsim: cannot write the output: {exc}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # the last resort: one line and a failure status
         print(
             f"dhsim: internal error: {printable(f'{type(exc).__name__}: {exc}')}",

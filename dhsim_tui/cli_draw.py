@@ -23,7 +23,7 @@ from dhsim_tui.cli_kinematics import joint_values, parse_values
 from dhsim_tui.core.atomicfile import write_file
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.library import load_robot
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import counted, printable
 from dhsim_tui.core.validation import fmt
 from dhsim_tui.scene.figure import (
     VIEW_NAMES,
@@ -60,7 +60,7 @@ def parse_orbit(text: str) -> Orbit:
     values = parse_values(text, "--orbit")
     if len(values) != 2:
         raise DhsimError(
-            f"--orbit: expected AZIMUTH,ELEVATION in degrees, got {len(values)} values"
+            f"--orbit: expected AZIMUTH,ELEVATION in degrees, got {counted(len(values), 'value')}"
         )
     azimuth, elevation = values
     if not -90 <= elevation <= 90:

@@ -19,7 +19,7 @@ from dhsim_tui.core.formats import EXPORT_FORMATS
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import CONVENTIONS, UNITS, Robot
 from dhsim_tui.core.robotfile import dumps, save
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import printable, shortened
 
 
 def robot_text(robot: Robot, header: tuple[str, ...] = ()) -> str:
@@ -38,8 +38,19 @@ def _write_robot(robot: Robot, header: tuple[str, ...], out: str | None, force: 
     print(printable(f"wrote {path}"))
 
 
+#: what -o '' gets (the same words as the core's atomic writer)
+EMPTY_NAME = "-o: the file name is empty; give a name to write to"
+
+
+def _check_output_name(out: str | None) -> None:
+    """``-o ''`` is an empty name (``Path('')`` would be the working folder)."""
+    if out is not None and not out:
+        raise DhsimError(EMPTY_NAME)
+
+
 def _check_robot_output(out: str | None, force: bool) -> None:
     """Before any work: ``-o`` names a .toml file, and one that exists only with --force."""
+    _check_output_name(out)
     if out is None:
         return
     if Path(out).suffix != ".toml":
@@ -79,6 +90,7 @@ def cmd_import(args: argparse.Namespace) -> int:
 def cmd_export(args: argparse.Namespace) -> int:
     from dhsim_tui.core.export import export_text, write_export
 
+    _check_output_name(args.output)
     robot, _ = load_robot(args.robot)
     if args.output is None:
         sys.stdout.write(export_text(robot, args.format))
@@ -99,8 +111,9 @@ def cmd_convert(args: argparse.Namespace) -> int:
         if converted is not robot
         else f"already {args.convention} D-H: unchanged"
     )
-    _tell((f"{robot.name}: {note}",), to_stderr=args.output is None)
-    header = (f"{robot.name}: converted by dhsim from {path.name} ({note}).",)
+    name = shortened(robot.name)
+    _tell((f"{name}: {note}",), to_stderr=args.output is None)
+    header = (f"{name}: converted by dhsim from {path.name} ({note}).",)
     _write_robot(converted, header, args.output, args.force)
     return 0
 

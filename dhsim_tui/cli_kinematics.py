@@ -20,7 +20,7 @@ from dhsim_tui.core.ik_reasons import angle, length
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import LENGTH_DECIMALS, MAX_ABS, Robot
 from dhsim_tui.core.orientation import oat_matrix
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import counted, printable, shortened
 from dhsim_tui.core.validation import check_joint_values, fmt
 
 #: options whose value may start with a minus sign (``--q -10,20``)
@@ -30,20 +30,22 @@ IK_RESTARTS = 30
 
 
 def parse_values(text: str, option: str) -> list[float]:
-    """``"0, 30,-45"`` -> numbers, naming the bad item if one isn't a number."""
+    """``"0, 30,-45"`` -> numbers, naming the bad item if one isn't a number.
+    Digits are ASCII only: float() would also read ``١`` (Arabic-Indic) as 1."""
     items = [item.strip() for item in text.split(",")]
     values = []
     for number, item in enumerate(items, start=1):
         try:
-            if "_" in item:  # float() would read 1_0 as 10
+            if "_" in item or not item.isascii():  # float() would read 1_0 as 10
                 raise ValueError
             value = float(item)
         except ValueError:
-            shown = printable(repr(item)) if item else "an empty value"
-            raise DhsimError(f"{option}: item {number} ({shown}) is not a number") from None
+            shown = printable(repr(shortened(item))) if item else "an empty value"
+            digits = "; a number is written in ASCII (0-9 . - + e)" if not item.isascii() else ""
+            raise DhsimError(f"{option}: item {number} ({shown}) is not a number{digits}") from None
         if not math.isfinite(value) or abs(value) > MAX_ABS:
             raise DhsimError(
-                f"{option}: item {number} ({printable(item)}) is not a finite number "
+                f"{option}: item {number} ({printable(shortened(item))}) is not a finite number "
                 f"of sane size (|value| <= {fmt(MAX_ABS)})"
             )
         values.append(value)
@@ -83,7 +85,7 @@ def format_fk(robot: Robot, q: Sequence[float]) -> str:
     table = _table(
         [("X", "Y", "Z", f"({robot.units})"), (*xyz, ""), ("O", "A", "T", "(deg)"), (*oat, "")]
     )
-    return "\n".join([printable(robot.name), _joints_line(robot, q), *table])
+    return "\n".join([printable(shortened(robot.name)), _joints_line(robot, q), *table])
 
 
 def fk_json(robot: Robot, q: Sequence[float]) -> str:
@@ -127,9 +129,9 @@ def cmd_ik(args: argparse.Namespace) -> int:
         return _ik_all(robot, target, start, position_only=args.oat is None, as_json=args.json)
     result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
     if not result.success:
-        raise DhsimError(f"no solution for {robot.name}: {result.reason}")
+        raise DhsimError(f"no solution for {shortened(robot.name)}: {result.reason}")
     if not all(math.isfinite(v) for v in (*result.q, result.residual)):
-        raise DhsimError(f"no solution for {robot.name}: the solver lost precision")
+        raise DhsimError(f"no solution for {shortened(robot.name)}: the solver lost precision")
     pose = robot.kinematics.end_effector(result.q)
     if args.json:
         print(
@@ -149,7 +151,7 @@ def cmd_ik(args: argparse.Namespace) -> int:
     else:
         q = [_round(v, 4) for v in result.q]
         print(
-            f"{printable(robot.name)}\n{_joints_line(robot, q)}\n"
+            f"{printable(shortened(robot.name))}\n{_joints_line(robot, q)}\n"
             f"residual {length(robot, result.position_error)}, "
             f"{angle(result.orientation_error)}"
         )
@@ -162,7 +164,7 @@ def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) 
 
     found = all_solutions(robot, target, start, position_only=position_only)
     if not found.solutions:
-        raise DhsimError(f"no solution for {robot.name}: {found.note}")
+        raise DhsimError(f"no solution for {shortened(robot.name)}: {found.note}")
     if as_json:
         solutions = [
             {"q": list(s.q), "config": s.config, "residual": s.residual} for s in found.solutions
@@ -180,8 +182,11 @@ def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) 
         )
         return 0
     count = len(found.solutions)
-    kind = "representatives of a continuous family" if found.family else "solutions"
-    lines = [printable(robot.name), f"{count} {kind} ({found.method})"]
+    if found.family:
+        kind = counted(count, "representative", "representatives") + " of a continuous family"
+    else:
+        kind = counted(count, "solution")
+    lines = [printable(shortened(robot.name)), f"{kind} ({found.method})"]
     if found.note:
         lines.append(printable(found.note))
     for s in found.solutions:

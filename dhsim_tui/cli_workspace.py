@@ -16,7 +16,7 @@ import json
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.library import load_robot
 from dhsim_tui.core.model import LENGTH_DECIMALS, Robot
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import counted, printable, shortened
 from dhsim_tui.core.workspace import (
     DEFAULT_SAMPLES,
     MAX_SAMPLES,
@@ -30,12 +30,15 @@ MAX_SEED = 2**63 - 1
 
 
 def _whole_number(text: str) -> int:
+    """ASCII digits only: int() would also read ``١`` (Arabic-Indic) as 1."""
     try:
-        if "_" in text:  # int() would read 1_0 as 10
+        if "_" in text or not text.isascii():  # int() would read 1_0 as 10
             raise ValueError
         return int(text.strip())
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        raise argparse.ArgumentTypeError(
+            f"{shortened(text)!r} is not a whole number (ASCII digits 0-9)"
+        ) from None
 
 
 def sample_count(text: str) -> int:
@@ -44,7 +47,7 @@ def sample_count(text: str) -> int:
         return check_sample_count(_whole_number(text))
     except DhsimError:
         raise argparse.ArgumentTypeError(
-            f"{text!r}: give a whole number of samples from 1 to {MAX_SAMPLES}"
+            f"{shortened(text)!r}: give a whole number of samples from 1 to {MAX_SAMPLES}"
         ) from None
 
 
@@ -52,7 +55,9 @@ def seed_value(text: str) -> int:
     """``--seed``: a whole number from 0 to 2^63 - 1."""
     value = _whole_number(text)
     if not 0 <= value <= MAX_SEED:
-        raise argparse.ArgumentTypeError(f"{text!r}: give a whole number from 0 to {MAX_SEED}")
+        raise argparse.ArgumentTypeError(
+            f"{shortened(text)!r}: give a whole number from 0 to {MAX_SEED}"
+        )
     return value
 
 
@@ -65,21 +70,23 @@ def format_workspace(robot: Robot, summary: WorkspaceSummary, seed: int) -> str:
         return f"{round(value, places) + 0.0:.{places}f}"
 
     lows, highs = [num(v) for v in summary.xyz_min], [num(v) for v in summary.xyz_max]
-    width = max(len(cell) for cell in (*lows, *highs, num(summary.reach_reached)))
-    label = len("horizontal radius")
+    width = max(len(cell) for cell in (*lows, *highs, num(summary.reach)))
+    label = len("reached by samples")
     box = [
         f"{axis:<{label}}  {lo:>{width}} .. {hi:>{width}} {unit}"
         for axis, lo, hi in zip("xyz", lows, highs, strict=True)
     ]
     figures = [
-        f"{'reach':<{label}}  {num(summary.reach_reached):>{width}} {unit}"
-        f"   from frame 0's origin; bound {num(summary.reach_bound)} {unit}",
+        f"{'reach':<{label}}  {num(summary.reach):>{width}} {unit}"
+        f"   the farthest the tool gets from frame 0's origin within the limits",
+        f"{'reached by samples':<{label}}  {num(summary.reach_reached):>{width}} {unit}"
+        f"   the farthest of these samples; link lengths' sum {num(summary.reach_bound)} {unit}",
         f"{'horizontal radius':<{label}}  {num(summary.horizontal_radius):>{width}} {unit}"
         "   from the vertical through frame 0's origin",
     ]
     head = [
-        printable(robot.name),
-        f"{summary.count} random joint vectors within the limits (seed {seed}); "
+        printable(shortened(robot.name)),
+        f"{counted(summary.count, 'random joint vector')} within the limits (seed {seed}); "
         "tool positions, world coordinates",
     ]
     return "\n".join([*head, *box, *figures])

@@ -4,6 +4,7 @@ from the reference's formulas (plain 4×4 products), to check the core against."
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -101,3 +102,30 @@ def in_tmp(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     monkeypatch.setenv("DHSIM_RECOVERY_DIR", str(tmp_path / "recovery"))
     return tmp_path
+
+
+#: what a test module of the terminal UI imports (the rest are the core's and
+#: the command line's, which .ci/run also runs under every Python it finds)
+_UI = re.compile(
+    r"dhsim_tui\.(app|screens|widgets|screenshot|colour)|from textual|pty_screen|snap_compare"
+    r"|run_test"
+)
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "ui: drives the terminal UI (Textual, a pseudo-terminal)")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark every test of a module that drives the UI ``ui``: ``-m "not ui"``
+    runs the core's and the command line's alone."""
+    seen: dict[str, bool] = {}
+    for item in items:
+        path = str(item.path)
+        if path not in seen:
+            try:
+                seen[path] = bool(_UI.search(item.path.read_text(encoding="utf-8")))
+            except OSError:
+                seen[path] = False
+        if seen[path]:
+            item.add_marker(pytest.mark.ui)

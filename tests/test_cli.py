@@ -213,8 +213,9 @@ def test_check_bundled(capsys):
     assert (code, err) == (0, "")
     assert out.count("\n") == 1
     assert out.startswith("ok")
-    # 431.8 + 20.3 + 150.05 + 431.8: the sum of |a| + |d| (reference §3)
-    for fragment in ("Puma 560", "6 joints", "RRRRRR", "1033.95", "mm", "puma560.toml"):
+    # the arm straightened: hypot(150.05, 431.8 + hypot(431.8, 20.3)), not the
+    # seed's sum of |a| + |d| (1033.95, a bound: issue 17)
+    for fragment in ("Puma 560", "6 joints", "RRRRRR", "reach 877.01", "mm", "puma560.toml"):
         assert fragment in out, fragment
 
 
@@ -586,3 +587,16 @@ def test_simulator_in_a_terminal_refuses_a_bad_robot_before_any_ui():
     assert status == 2
     assert "no_such_robot: no such file" in shown
     assert b"\x1b[?1049h" not in raw  # the alternate screen was never entered
+
+
+def test_simulator_in_a_terminal_names_a_urdf_and_the_command_that_imports_it(tmp_path):
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_bytes((ROOT / "tests" / "urdfs" / "planar_elbow.urdf").read_bytes())
+    with PtyScreen([str(urdf)]) as shell:
+        status = shell.wait_exit()
+        raw = shell.raw_bytes()
+        shown = " ".join(shell.screen_text().split())  # the line as the terminal wrapped it
+    assert status == 2
+    assert "a URDF, not a dhsim robot file" in shown and "dhsim import" in shown
+    assert "not valid TOML" not in shown
+    assert b"\x1b[?1049h" not in raw

@@ -19,6 +19,7 @@ import pytest
 import yourdfpy
 
 from dhsim_tui.cli import main
+from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.export import export_text
 from dhsim_tui.core.library import bundled_names, bundled_path, load_robot
 from dhsim_tui.core.robotfile import load
@@ -215,3 +216,42 @@ def test_the_commands_work_without_a_terminal_and_into_a_pipe():
         check=False,
     )
     assert result.returncode == 0 and json.load(io.StringIO(result.stdout))["name"] == "Puma 560"
+
+
+# -- a URDF or a CSV where a robot file is expected ------------------------------------
+
+
+@pytest.mark.parametrize("command", ["check", "fk", "ik", "workspace", "export", "edit"])
+def test_a_urdf_given_as_a_robot_names_the_import_command_that_then_works(
+    capsys, tmp_path, command
+):
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_bytes((URDFS / "planar_elbow.urdf").read_bytes())
+    extra = {"ik": ["--xyz", "1,0,0"], "export": ["--format", "json"]}.get(command, [])
+    code, out, err = run(capsys, command, str(urdf), *extra)
+    if command == "edit":  # no terminal here: the simulator says so before loading
+        assert code == 2 and "interactive terminal" in err
+        from dhsim_tui.cli import _open
+
+        with pytest.raises(DhsimError) as caught:
+            _open(str(urdf))  # what it loads the robot with, in a terminal
+        err = f"dhsim: error: {caught.value}\n"
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1, err
+    assert "a URDF, not a dhsim robot file" in err and "not valid TOML" not in err
+    suggested = err.strip()[err.index("dhsim import ") :]
+    assert suggested == f"dhsim import {urdf} -o {tmp_path / 'arm.toml'}"
+    code, _, err = run(capsys, *suggested.split()[1:])
+    assert code == 0, err
+    assert load(tmp_path / "arm.toml").dof == 3  # the elbow arm's three revolute joints
+
+
+def test_a_csv_given_as_a_robot_names_the_import_command(capsys, tmp_path):
+    table = tmp_path / "dh.csv"
+    table.write_text("theta,d,a,alpha\n0,0,100,0\n0,0,50,0\n", encoding="utf-8")
+    code, out, err = run(capsys, "fk", str(table))
+    assert code == 2 and out == ""
+    assert "a CSV file, not a dhsim robot file" in err
+    suggested = err.strip()[err.index("dhsim import ") :]
+    code, _, err = run(capsys, *suggested.split()[1:])
+    assert code == 0, err
+    assert load(tmp_path / "dh.toml").dof == 2

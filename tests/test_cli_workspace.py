@@ -12,7 +12,7 @@ from dhsim_tui import cli
 from dhsim_tui.cli import UsageError, _Parser
 from dhsim_tui.cli_workspace import format_workspace, subparsers
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.workspace import reach, sample_summary
+from dhsim_tui.core.workspace import arm_reach, reach, sample_summary
 
 
 def run(argv: list[str], capsys) -> tuple[int, str, str]:
@@ -33,17 +33,19 @@ def test_text_lists_the_box_and_reach_in_aligned_lines_with_units(capsys):
     assert lines[0] == "Puma 560" and "3000 random joint vectors" in lines[1]
     assert "(seed 4)" in lines[1]
     body = lines[2:]
-    assert [line.split()[0] for line in body] == ["x", "y", "z", "reach", "horizontal"]
+    assert [line.split()[0] for line in body] == ["x", "y", "z", "reach", "reached", "horizontal"]
     assert all(" mm" in line for line in body)
     # the first numbers end in one column
-    ends = {line.index(" mm") if i >= 3 else line.index(" ..") for i, line in enumerate(body)}
+    ends = {line.index(" mm") for line in body[3:]}
     assert len(ends) == 1
     for axis, line in zip("xyz", body[:3], strict=True):
         k = "xyz".index(axis)
         low, high = float(line.split()[1]), float(line.split()[3])
         assert low == pytest.approx(summary.xyz_min[k], abs=0.006)
         assert high == pytest.approx(summary.xyz_max[k], abs=0.006)
-    assert f"bound {reach(robot):.2f} mm" in body[3]
+    assert f"{arm_reach(robot):.2f} mm" in body[3]
+    assert f"{summary.reach_reached:.2f} mm" in body[4]
+    assert f"link lengths' sum {reach(robot):.2f} mm" in body[4]
     assert out == format_workspace(robot, summary, 4) + "\n"
 
 
@@ -56,7 +58,8 @@ def test_json_is_one_object(capsys):
     assert data["robot"] == robot.name and data["units"] == "mm" and data["seed"] == 0
     assert data["samples"] == 2000
     assert data["min"] == list(summary.xyz_min) and data["max"] == list(summary.xyz_max)
-    assert data["reach"] == summary.reach_reached <= data["reach_bound"] == reach(robot)
+    assert data["reach_reached"] == summary.reach_reached <= data["reach"] == arm_reach(robot)
+    assert data["reach"] <= data["reach_bound"] == reach(robot)
     assert data["horizontal_radius"] == summary.horizontal_radius
     assert data["z_range"] == [summary.xyz_min[2], summary.xyz_max[2]]
     assert data["origin"] == [0.0, 0.0, 0.0]

@@ -470,3 +470,56 @@ def test_nearly_parallel_axes_and_the_parallel_tolerance():
     assert np.abs(parallel.fk(q) - _poe(lines, tip, q)).max() < 1e-8
     with pytest.raises(DhsimError, match="parallel tolerance"):
         extract(lines, tip, parallel_tol=2.0)
+
+
+def test_pairs_can_be_taken_as_parallel_by_number():
+    """``parallel``: a pair 3e-10 rad from parallel, its common normal ~3e9 away
+    as skew lines, is parallel when asked: a = the lines' distance, d ~ 0, and
+    the forward kinematics off by about the angle times the lever (~1e-9)."""
+    tilt = 3e-10
+    z = np.array([0.0, 0.0, 1.0])
+    leaning = np.array([-math.sin(tilt), 0.0, math.cos(tilt)])
+    lines = [("revolute", np.zeros(3), z), ("revolute", np.array([1.0, 0.0, 0.0]), leaning)]
+    tip = _trans(x=1.5)
+    assert abs(extract(lines, tip).rows[0].d) > 1e9
+    chain = extract(lines, tip, parallel={1})
+    first = chain.rows[0]
+    assert first.alpha == 0.0 and abs(first.d) < 1e-9 and first.a == pytest.approx(1.0, abs=1e-12)
+    for q in ([0.0, 0.0], [2.5, -3.0], [-1.0, 3.1]):
+        assert np.abs(_table_fk(chain, q) - _poe(lines, tip, q)).max() < 5 * tilt
+
+
+def test_the_last_axis_and_the_tip_taken_as_parallel_cost_nothing():
+    """Pair n (the last axis with the tip's z axis) taken as parallel: the tool
+    frame takes up the angle, so the chain is as exact as ever."""
+    tilt = 3e-10
+    tip = _trans(x=0.5) @ np.array(
+        [
+            [math.cos(tilt), 0.0, math.sin(tilt), 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [-math.sin(tilt), 0.0, math.cos(tilt), 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ]
+    )
+    lines = [("revolute", np.zeros(3), np.array([0.0, 0.0, 1.0]))]
+    assert abs(extract(lines, tip).rows[0].d) > 1e8
+    chain = extract(lines, tip, parallel={1})
+    assert abs(chain.rows[0].d) < 1e-12 and chain.rows[0].a == pytest.approx(0.5, abs=1e-12)
+    for q in ([0.0], [2.0], [-3.0]):
+        np.testing.assert_allclose(_table_fk(chain, q), _poe(lines, tip, q), rtol=0, atol=1e-14)
+
+
+def test_a_looser_length_tolerance_makes_near_coincident_axes_one():
+    """Parallel axes 1e-11 apart: two lines by default (a = 1e-11 and x along
+    that hair), one line with ``length_tol=1e-10`` (a = 0, x kept)."""
+    z = np.array([0.0, 0.0, 1.0])
+    lines = [("revolute", np.zeros(3), z), ("revolute", np.array([0.0, 1e-11, 0.3]), z)]
+    tip = _trans(x=0.4)
+    apart = extract(lines, tip)
+    assert apart.rows[0].a == pytest.approx(1e-11) and abs(apart.rows[0].theta) > 1.0
+    one = extract(lines, tip, length_tol=1e-10)
+    assert (one.rows[0].a, one.rows[0].theta) == (0.0, 0.0)
+    for q in ([0.0, 0.0], [1.0, -2.0]):
+        assert np.abs(_table_fk(one, q) - _poe(lines, tip, q)).max() < 1e-10
+    with pytest.raises(DhsimError, match="length tolerance"):
+        extract(lines, tip, length_tol=0.5)

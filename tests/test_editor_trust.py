@@ -31,7 +31,7 @@ from dhsim_tui.core.editing import (
 from dhsim_tui.core.robotfile import read_stamp
 from dhsim_tui.scene import VIEWS, build_wireframe, project
 from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import FileChanged, ReadOnly, SaveGuard
+from dhsim_tui.screens.dialogs import Choice, FileChanged, ReadOnly, SaveGuard
 from dhsim_tui.screens.editor import QUIT_HINT, EditorScreen
 from dhsim_tui.screens.editor_changes import describe_change
 from dhsim_tui.screens.editor_table import joint_labels, number
@@ -467,7 +467,7 @@ async def _changed_on_disk(in_tmp, pilot) -> tuple[Path, bytes]:
     assert isinstance(pilot.app.screen, FileChanged)
     text = flat(region_text(pilot.app, pilot.app.screen.query_one(Vertical)))
     assert "changed on disk since you opened it" in text
-    assert "Overwrite it, reload it (lose your changes), or cancel?" in text
+    assert "reload it (the file as it is now, your changes put back on top)" in text
     return file, outside
 
 
@@ -487,15 +487,58 @@ async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
         if answer == "o":
             assert on_disk == mine and not editor(app).dirty
         elif answer == "r":
+            # the file as the other program left it, with my edit on top
             assert file.read_bytes() == outside
-            assert editor(app).robot == on_disk and on_disk.joints[1].a == 77.0
-            assert not editor(app).dirty
-            await pilot.press("ctrl+z")  # the edits were only set aside
-            assert editor(app).robot == mine
+            robot = editor(app).robot
+            assert on_disk.joints[1].a == 77.0 and robot.joints[1].a == 77.0
+            assert robot.joints[0].a == 111.0 and editor(app).dirty
+            assert "your edits on top" in status_shown_whole(app)
+            await pilot.press("ctrl+z")  # undo takes out only my edit
+            assert editor(app).robot == on_disk and not editor(app).dirty
         else:
             assert file.read_bytes() == outside
             assert editor(app).robot == mine and editor(app).dirty
             assert "not saved" in status_shown_whole(app)
+
+
+@pytest.mark.parametrize("keep", ["mine", "theirs"])
+async def test_reload_asks_about_a_value_both_changed_naming_it_and_both_values(keep, in_tmp):
+    """The trial's case: I set joint 1 max to 150, the file's other editor
+    set it to 155 and joint 5 min to -120. Reload asks about joint 1 max
+    only; ctrl+z after it never reverts the other person's change."""
+    file = in_tmp / "arm.toml"
+    file.write_text(COMMENTED)
+    app = editor_app(load(file), file)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.pause()
+        await edit_cell(pilot, 0, 8, "150")
+        theirs = set_joint_field(load(file), 0, "max", 155.0)
+        theirs = set_joint_field(theirs, 1, "min", -120.0)
+        save(theirs, file)
+        await pilot.press("ctrl+s")
+        await pilot.pause()
+        assert isinstance(app.screen, FileChanged)
+        await pilot.press("r")
+        for _ in range(50):
+            await pilot.pause(0.02)
+            if isinstance(app.screen, Choice):
+                break
+        assert isinstance(app.screen, Choice)
+        text = flat(region_text(app, app.screen.query_one(Vertical)))
+        assert "joint 1 max" in text and "keep yours: 150" in text
+        assert "keep the file's: 155" in text
+        if keep == "theirs":
+            await pilot.press("down")
+        await pilot.press("enter")
+        for _ in range(50):
+            await pilot.pause(0.02)
+            if isinstance(app.screen, EditorScreen):
+                break
+        robot = editor(app).robot
+        assert robot.joints[1].min == -120.0  # theirs, never asked about
+        assert robot.joints[0].max == (150.0 if keep == "mine" else 155.0)
+        await pilot.press("ctrl+z")
+        assert editor(app).robot == load(file)  # back to the file's, not before it
 
 
 async def test_overwrite_keeps_the_comments(in_tmp):

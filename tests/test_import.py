@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import math
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -17,15 +18,17 @@ import yourdfpy
 from hypothesis import HealthCheck, given, settings
 
 from dhsim_tui.core.errors import DhsimError, TipNeeded
+from dhsim_tui.core.export import export_text
 from dhsim_tui.core.importer import from_csv, from_urdf, import_file
-from dhsim_tui.core.library import load_robot
-from dhsim_tui.core.model import UNITS, Robot
+from dhsim_tui.core.library import bundled_names, load_robot
+from dhsim_tui.core.model import UNITS, Joint, Robot
 from tests.robot_strategies import reference_pose
 from tests.test_urdf import CASES as URDF_CASES
 from tests.test_urdf import random_trees
 
 URDFS = Path(__file__).resolve().parent / "urdfs"
 TOL = 1e-9
+BUNDLED = bundled_names()
 #: the chains of tests/test_urdf.py (file, tip, base)
 CASES = URDF_CASES
 
@@ -60,7 +63,9 @@ def _si(robot: Robot, q) -> np.ndarray:
     )
 
 
-def check_against_yourdfpy(robot: Robot, text: str, base: str, tip: str, samples: int = 20):
+def check_against_yourdfpy(
+    robot: Robot, text: str, base: str, tip: str, samples: int = 20, tol: float = TOL
+):
     urdf = _yourdfpy(text)
     names = _moving_names(urdf, base, tip)
     assert len(names) == robot.dof
@@ -71,8 +76,8 @@ def check_against_yourdfpy(robot: Robot, text: str, base: str, tip: str, samples
         urdf.update_cfg(dict(zip(names, _si(robot, q), strict=True)))
         theirs = urdf.get_transform(frame_to=tip, frame_from=base)
         ours = robot.kinematics.pose(q)
-        np.testing.assert_allclose(ours[:3, 3] * metres, theirs[:3, 3], rtol=0, atol=TOL)
-        np.testing.assert_allclose(ours[:3, :3], theirs[:3, :3], rtol=0, atol=TOL)
+        np.testing.assert_allclose(ours[:3, 3] * metres, theirs[:3, 3], rtol=0, atol=tol)
+        np.testing.assert_allclose(ours[:3, :3], theirs[:3, :3], rtol=0, atol=tol)
         # and the robot's own chain agrees with the textbook product
         np.testing.assert_allclose(ours, reference_pose(robot, q), rtol=0, atol=TOL * 1e3)
 
@@ -120,14 +125,16 @@ def test_joint_values_mean_the_same_on_both_sides():
 def test_limits_come_from_the_urdf_and_continuous_joints_turn_fully():
     robot = import_file(URDFS / "continuous.urdf").robot
     assert (robot.joints[1].min, robot.joints[1].max) == (-360.0, 360.0)  # "spin"
-    assert robot.joints[0].max == pytest.approx(math.degrees(1.0), abs=1e-9)  # "swing"
+    # "swing": limits are the shortest decimals within 1e-9 (relative) of the URDF's
+    assert robot.joints[0].max == 57.2957795
+    assert robot.joints[0].max == pytest.approx(math.degrees(1.0), rel=1e-9)
     text = (URDFS / "ur5.urdf").read_text()
     urdf = _yourdfpy(text)
     robot = import_file(URDFS / "ur5.urdf", tip="tool0").robot
     for joint, name in zip(robot.joints, _moving_names(urdf, "world", "tool0"), strict=True):
         limit = urdf.joint_map[name].limit
-        assert joint.min == pytest.approx(math.degrees(limit.lower), abs=1e-9)
-        assert joint.max == pytest.approx(math.degrees(limit.upper), abs=1e-9)
+        assert joint.min == pytest.approx(math.degrees(limit.lower), rel=1e-9)
+        assert joint.max == pytest.approx(math.degrees(limit.upper), rel=1e-9)
 
 
 def test_a_range_without_zero_gets_a_home_inside_it():
@@ -152,7 +159,9 @@ def test_random_chains_import_exactly(case):
         # a chain without a moving joint, or one no D-H table reproduces to 1e-9
         assert "no moving joint" in message or "no D-H table reproduces" in message, message
         return
-    check_against_yourdfpy(result.robot, text, base, tip, 5)
+    # the import's check holds at its own joint values; its numbers are rounded
+    # as far as that allows, so elsewhere the tool may be a hair further off
+    check_against_yourdfpy(result.robot, text, base, tip, 5, tol=2 * TOL)
 
 
 def test_a_tree_without_tip_lists_its_leaves():
@@ -269,6 +278,7 @@ def test_a_modified_table_is_read_as_declared_or_converted():
         ("theta,d,a,alpha\n", "no joint rows"),
         ("theta,d,a,alpha,min,max\n0,0,0,0,10,20\n", "outside"),
         ("# base_xyz = 1, 2\ntheta,d,a,alpha\n0,0,0,0\n", "line 1: base_xyz: expected 3 numbers"),
+        ('# pose "a" = 1, 2\ntheta,d,a,alpha\n0,0,0,0\n', "poses.a: expected 1 joint value"),
     ],
 )
 def test_bad_csv_is_one_line_naming_file_line_and_column(text, message):
@@ -307,3 +317,200 @@ def test_too_nearly_parallel_axes_are_refused_saying_why():
     message = str(caught.value)
     assert message.startswith("np.urdf: ") and "1.0e-07 rad from parallel" in message
     assert "\n" not in message
+
+
+# -- nearly parallel axes: a rounded π/2 (issue 17, point 7) --------------------------------
+
+#: quarter turns a URDF's author may give every link frame (ROS's UR5 rolls them by 90°)
+QUARTER_TURNS = {
+    "x": np.array([[1.0, 0, 0], [0, 0, -1], [0, 1, 0]]),
+    "y": np.array([[0.0, 0, 1], [0, 1, 0], [-1, 0, 0]]),
+    "z": np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]]),
+}
+#: a D-H table from a URDF written to 10 digits holds no longer number than this
+SHORT = 6
+
+
+def _rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """Rz(yaw)·Ry(pitch)·Rx(roll), by its entries."""
+    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def _rpy_of(r: np.ndarray) -> tuple[float, float, float]:
+    pitch = math.atan2(-r[2, 0], math.hypot(r[0, 0], r[1, 0]))
+    if abs(math.cos(pitch)) > 1e-9:
+        return math.atan2(r[2, 1], r[2, 2]), pitch, math.atan2(r[1, 0], r[0, 0])
+    return math.atan2(-r[1, 2], r[1, 1]), pitch, 0.0
+
+
+def _written(values, digits: int) -> str:
+    return " ".join(f"{v:.{digits}g}" for v in values)
+
+
+def _rewritten(text: str, turn: np.ndarray | None = None, digits: int = 10) -> str:
+    """The URDF with every link frame but the root's turned by ``turn`` (joint
+    origins and axes changed to match, so the arm is the same) and the numbers
+    of every joint origin written to ``digits`` significant digits, as URDFs
+    from elsewhere are: the rounding leaves axes meant parallel ~1e-10 apart.
+    dhsim's comment is dropped, so the file imports as any URDF."""
+    root = ET.fromstring(text)
+    roots = {link.get("name") for link in root.findall("link")} - {
+        j.find("child").get("link") for j in root.findall("joint")
+    }
+    turned = np.eye(3) if turn is None else turn
+
+    def change(link: str) -> np.ndarray:
+        return np.eye(3) if link in roots else turned
+
+    for joint in root.findall("joint"):
+        origin = joint.find("origin")
+        xyz = np.array([float(v) for v in origin.get("xyz", "0 0 0").split()])
+        rotation = _rpy_matrix(*(float(v) for v in origin.get("rpy", "0 0 0").split()))
+        parent = change(joint.find("parent").get("link"))
+        child = change(joint.find("child").get("link"))
+        origin.set("xyz", _written(parent.T @ xyz, digits))
+        origin.set("rpy", _written(_rpy_of(parent.T @ rotation @ child), digits))
+        axis = joint.find("axis")
+        if axis is not None:
+            direction = np.array([float(v) for v in axis.get("xyz").split()])
+            axis.set("xyz", _written(child.T @ direction, 17))
+    return ET.tostring(root, encoding="unicode")
+
+
+def _significant(value: float) -> int:
+    """How many significant digits ``repr`` gives a number (0 for 0)."""
+    if value == 0:
+        return 0
+    mantissa = repr(abs(float(value))).split("e")[0].replace(".", "")
+    return len(mantissa.strip("0"))
+
+
+def _numbers(robot: Robot) -> list[float]:
+    values = [v for j in robot.joints for v in (j.theta, j.d, j.a, j.alpha, j.offset)]
+    return [*values, *robot.base_xyz, *robot.base_rpy, *robot.tool.xyz, *robot.tool.rpy]
+
+
+@pytest.mark.parametrize("turn", [None, "x", "y", "z"])
+@pytest.mark.parametrize("name", BUNDLED)
+def test_urdfs_written_to_ten_digits_import_with_round_numbers(name, turn):
+    """The bundled robots as URDFs from elsewhere: frames turned and numbers
+    rounded to 10 digits. Each imports (no axes 4e-10 rad from parallel with
+    a common normal 1e9 m away), matches yourdfpy, and its D-H table holds
+    the short numbers the arm was made of, not 90.0000000118."""
+    robot, _ = load_robot(name)
+    text = _rewritten(export_text(robot, "urdf"), QUARTER_TURNS.get(turn))
+    assert "dhsim-robot" not in text
+    result = from_urdf(text, source=f"{name}.urdf", units=robot.units)
+    check_against_yourdfpy(result.robot, text, "world", "tool", 10, tol=2 * TOL)
+    assert all(j.alpha % 90.0 == 0.0 for j in result.robot.joints)
+    long = [v for v in _numbers(result.robot) if _significant(v) > SHORT]
+    assert not long, long
+    assert not any("kept, as the URDF has it" in note for note in result.notes)
+    parallel = [note for note in result.notes if "imported as parallel" in note]
+    assert all("rad from parallel" in note for note in parallel)
+
+
+def test_the_issues_refused_scara_imports_with_its_axes_parallel():
+    """A SCARA's quill written with a rounded π: axes 4.1e-10 rad from
+    antiparallel, whose common normal once lay 6e8 m away (and was refused)."""
+    robot, _ = load_robot("scara_pedestal")
+    text = _rewritten(export_text(robot, "urdf"), QUARTER_TURNS["z"])
+    result = from_urdf(text, source="scara.urdf", units="mm")
+    (note,) = [n for n in result.notes if "imported as parallel" in n]
+    assert "the axes of joints 2 and 3 are 4.1e-10 rad from parallel" in note
+    assert result.robot.joints[1].alpha == 180.0
+    check_against_yourdfpy(result.robot, text, "world", "tool", tol=2 * TOL)
+
+
+def test_a_pair_tilted_by_a_rounded_angle_imports_as_parallel():
+    text = _tilted_pair(4.1e-10)
+    result = from_urdf(text, source="np.urdf")
+    first, _second = result.robot.joints
+    assert (first.a, first.alpha, first.d) == (0.4, 0.0, 0.0)
+    assert any("4.1e-10 rad from parallel" in note for note in result.notes)
+    check_against_yourdfpy(result.robot, text, "a", "d", tol=2 * TOL)
+
+
+def test_a_pair_too_far_from_parallel_for_either_is_refused_saying_both():
+    with pytest.raises(DhsimError) as caught:
+        from_urdf(_tilted_pair(3e-9), source="np.urdf")
+    message = str(caught.value)
+    assert message.startswith("np.urdf: no D-H table reproduces this chain to 1e-9: ")
+    assert "3.0e-09 rad from parallel" in message
+    assert "taken as parallel, the tool is off by" in message and "as skew lines" in message
+    assert "\n" not in message
+
+
+@pytest.mark.parametrize("dof", [12, 32])
+def test_long_chains_written_to_ten_digits_import(dof):
+    """Long arms of parallel, perpendicular and antiparallel axes, frames
+    rolled 90° about x and numbers rounded to 10 digits."""
+    rng = np.random.default_rng(dof)
+    joints = tuple(
+        Joint(
+            "revolute",
+            0.0,
+            float(rng.choice([0.0, 50.0, 120.0])),
+            float(rng.choice([0.0, 100.0, 250.0])),
+            float(rng.choice([0.0, 0.0, 90.0, -90.0, 180.0])),
+            -170.0,
+            170.0,
+        )
+        for _ in range(dof)
+    )
+    robot = Robot(name="long arm", joints=joints)
+    text = _rewritten(export_text(robot, "urdf"), QUARTER_TURNS["x"])
+    result = from_urdf(text, source="long.urdf", units="mm")
+    assert result.robot.dof == dof
+    # the twists are the arm's, to what the rounding left (a long arm's sum of
+    # 2e-10 rad tilts leaves no room to round every one of them away)
+    for ours, theirs in zip(result.robot.joints[:-1], joints[:-1], strict=True):
+        assert ours.alpha == pytest.approx(theirs.alpha, abs=1e-6)
+    check_against_yourdfpy(result.robot, text, "world", "tool", 5, tol=2 * TOL)
+
+
+# -- rounding (issue 17, point 2) ------------------------------------------------------------
+
+
+def test_numbers_are_the_shortest_that_keep_the_match():
+    """Lengths written with 13 digits keep 9 or so: the fewest within 5e-10 m."""
+    text = (
+        '<robot name="r"><link name="a"/><link name="b"/><link name="c"/>'
+        '<joint name="j1" type="revolute"><parent link="a"/><child link="b"/>'
+        '<origin xyz="0 0 0.3000000000049"/><axis xyz="0 0 1"/>'
+        '<limit lower="-2.8" upper="2.8"/></joint>'
+        '<joint name="j2" type="fixed"><parent link="b"/><child link="c"/>'
+        '<origin xyz="0.1234567891234 0 0"/></joint></robot>'
+    )
+    result = from_urdf(text, source="r.urdf")
+    (joint,) = result.robot.joints
+    assert (joint.a, joint.d) == (0.123456789, 0.3)
+    # limits: the shortest decimal within 1e-9 (relative) of the radians converted
+    assert (joint.min, joint.max) == (-160.4281826, 160.4281826)
+    assert any("rounded to the fewest digits" in note for note in result.notes)
+    check_against_yourdfpy(result.robot, text, "a", "c")
+
+
+# -- the comment header of the robot file (issue 17, point 4) --------------------------------
+
+
+@pytest.mark.parametrize(
+    ("units", "words"),
+    [
+        ("m", "(degrees instead of radians; lengths in metres, as in the URDF)"),
+        ("mm", "(degrees instead of radians, millimetres instead of metres)"),
+        ("in", "(degrees instead of radians, inches instead of metres)"),
+    ],
+)
+def test_the_header_names_the_unit_in_words(units, words):
+    header = import_file(URDFS / "planar_elbow.urdf", units=units).header
+    assert words in header[1]
+    assert " m instead of" not in " ".join(header)

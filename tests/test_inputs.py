@@ -536,8 +536,8 @@ def test_fk_columns_of_a_huge_robot_never_run_together(capsys, tmp_path):
 def test_describe_shows_a_tiny_reach_whole():
     robot = loads(SMALL_M)
     summary = describe(robot)
-    assert "reach 5.41421356237e-09 m" in summary  # 12 significant digits, not "0"
-    assert "reach 1033.95 mm" in describe(load_robot("puma560")[0])
+    assert "reach 3.74166e-09 m" in summary  # sqrt(14) nm, 6 significant digits, not "0"
+    assert "reach 877.01 mm" in describe(load_robot("puma560")[0])
 
 
 def test_a_name_the_terminal_cannot_encode_is_escaped_not_a_crash(tmp_path):
@@ -546,7 +546,7 @@ def test_a_name_the_terminal_cannot_encode_is_escaped_not_a_crash(tmp_path):
     path.write_text(f"name = {toml_string('机器人')}\n" + ARM, encoding="utf-8")
     result = dhsim("check", str(path), env={**os.environ, "PYTHONIOENCODING": "ascii"})
     assert (result.returncode, result.stderr) == (0, b"")
-    assert b"ok  \\u673a\\u5668\\u4eba: 1 joints" in result.stdout
+    assert b"ok  \\u673a\\u5668\\u4eba: 1 joint, R," in result.stdout
 
 
 def test_a_solution_that_lost_precision_is_refused_not_printed(capsys, monkeypatch):

@@ -18,6 +18,7 @@ from dhsim_tui.core.orientation import (
     rpy_from_matrix,
     rpy_matrix,
 )
+from dhsim_tui.core.workspace import arm_reach
 
 # reference §5: joints (deg) -> exact X Y Z (mm), O A T (deg)
 PUMA_TABLE = [
@@ -172,9 +173,12 @@ def test_base_height_moves_floor_not_xyz(puma, rng):
 
 
 def test_reach_and_work_area_follow_the_seed(puma):
+    """The seed's reach is the sum of the link lengths; the work area is
+    30 mm round the arm's own reach (issue 17: the sum is only a bound)."""
     assert math.isclose(reach(puma), 431.8 + 150.05 + 20.3 + 431.8)
     area = work_area(puma)
-    side = reach(puma) + 30.0
+    side = arm_reach(puma) + 30.0
+    assert side < reach(puma)
     assert (area.xmin, area.xmax, area.ymin, area.ymax, area.zmax) == (
         -side,
         side,
@@ -190,7 +194,7 @@ def test_reach_counts_prismatic_range_tool_and_units():
     assert math.isclose(reach(stanford), 412 + 154 + 1270 + 263)
     planar, _ = load_robot("planar2")
     assert planar.units == "m"
-    assert math.isclose(work_area(planar).xmax, 2.0 + 0.03)
+    assert math.isclose(work_area(planar).xmax, 2.0 + 0.03)  # straight out: the same
 
 
 def test_reach_bounds_every_sampled_position(bundled, rng):

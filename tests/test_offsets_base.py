@@ -153,8 +153,9 @@ def test_a_moved_base_moves_the_arm_the_pedestal_and_the_work_area():
     wire = build_wireframe(moved, moved.kinematics.frames(q))
     assert np.allclose(wire.pedestal, [[100, -50, -671.83], [100, -50, 20]])
     area, before = work_area(moved), work_area(robot)
-    assert area.xmin == before.xmin + 100 and area.ymax == before.ymax - 50
-    assert area.zmin == -671.83 and area.zmax == before.zmax + 20
+    assert area.xmin == pytest.approx(before.xmin + 100)
+    assert area.ymax == pytest.approx(before.ymax - 50)
+    assert area.zmin == -671.83 and area.zmax == pytest.approx(before.zmax + 20)
 
 
 def test_offsets_and_base_survive_a_save_and_keep_the_comments(tmp_path):

@@ -168,13 +168,20 @@ async def test_P_on_a_changed_file_can_reload_it(robot_file):
     async with app.run_test(size=(80, 24)) as pilot:
         theirs = change_on_disk(robot_file)
         await save_pose(pilot)
-        await pilot.press("r")  # reload: the file's robot runs, the pose is dropped
-        await pilot.pause()
+        await pilot.press("r")  # reload: the file's robot runs, my pose put back on top
+        for _ in range(50):
+            await pilot.pause(0.02)
+            if isinstance(app.screen, ControlScreen) and "here" in app.robot.pose_names:
+                break
         assert isinstance(app.screen, ControlScreen)
-        assert "elsewhere" in app.robot.pose_names and "here" not in app.robot.pose_names
+        assert "elsewhere" in app.robot.pose_names and "here" in app.robot.pose_names
         assert app.screen.robot == app.robot
-        assert not app.has_unsaved_poses
-        await pilot.press("q")
+        assert app.has_unsaved_poses  # mine, not written yet
+        assert "your edits on top" in str(app.screen.query_one("#status").render())
+        await pilot.press("q")  # asks: discard
+        await pilot.pause()
+        await pilot.press("d")
+        await pilot.pause()
     assert app.return_code == 0
     assert robot_file.read_bytes() == theirs
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 import shutil
 import stat
-from datetime import UTC, datetime, timedelta
+from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
 import pytest
@@ -72,7 +72,7 @@ def test_recovery_dir_follows_the_environment(tmp_path, monkeypatch):
 
 def test_a_recovery_round_trips_with_its_source_and_time(recovery_folder, robot_file):
     robot = changed(robot_file)
-    before = datetime.now(UTC).replace(microsecond=0)
+    before = datetime.now(timezone.utc).replace(microsecond=0)
     file = write_recovery(robot, robot_file)
     assert file.parent == recovery_folder
     found = find_recovery(robot_file)
@@ -80,7 +80,7 @@ def test_a_recovery_round_trips_with_its_source_and_time(recovery_folder, robot_
     assert found.robot == robot
     assert found.file == file
     assert found.source == robot_file.resolve()
-    assert before <= found.saved_at <= datetime.now(UTC) + timedelta(seconds=1)
+    assert before <= found.saved_at <= datetime.now(timezone.utc) + timedelta(seconds=1)
     assert robot_file.name in file.read_text()  # a person can tell what it is for
     assert load(file) == robot  # and it is a robot file (header lines are comments)
 

@@ -12,7 +12,6 @@ import copy
 import errno
 import os
 import tempfile
-import tomllib
 from pathlib import Path
 
 import pytest
@@ -21,7 +20,7 @@ import tomli_w
 from dhsim_tui.core.errors import DhsimError, RobotFileError
 from dhsim_tui.core.library import bundled_names, bundled_path
 from dhsim_tui.core.model import Joint, Robot, Tool
-from dhsim_tui.core.robotfile import dumps, load, loads, save
+from dhsim_tui.core.robotfile import dumps, load, loads, save, tomllib
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
 BUNDLED_STEMS = sorted(p.stem for p in ROBOTS_DIR.glob("*.toml"))
@@ -139,11 +138,16 @@ def test_malformed_toml_names_the_line(tmp_path, text, line):
 def test_deeply_nested_toml_is_a_robot_file_error_not_a_recursion_error(tmp_path):
     # tomllib recurses into nested arrays; a small hostile file used to escape
     # as RecursionError (a traceback in the CLI).
+    # (an array may span lines; an inline table may not, so it stays under the
+    # line bound: 1,500 levels are 9,000 characters, past the recursion limit)
     depth = 5000
-    message = rejection(write(tmp_path, "name = " + "[" * depth + "]" * depth + "\n"))
-    assert_names(message, "not valid TOML")
+    message = rejection(write(tmp_path, "name = " + "[\n" * depth + "]\n" * depth))
+    assert_names(message, "not valid TOML", "nested too deeply")
+    depth = 1500
     inline = "tool = " + "{a = " * depth + "1" + "}" * depth + "\n"
-    assert_names(rejection(write(tmp_path, inline, "inline.toml")), "not valid TOML")
+    assert_names(
+        rejection(write(tmp_path, inline, "inline.toml")), "not valid TOML", "nested too deeply"
+    )
 
 
 def test_empty_file_is_missing_name(tmp_path):
@@ -534,6 +538,96 @@ def test_other_read_error(tmp_path, monkeypatch):
 def test_oversized_file_is_refused_before_parsing(tmp_path):
     path = write(tmp_path, "# " + "x" * 2_000_000 + "\n" + tomli_w.dumps(doc()))
     assert_names(rejection(path), "too large")
+
+
+def test_one_byte_order_mark_is_accepted_and_two_are_refused(tmp_path):
+    text = tomli_w.dumps(doc())
+    assert load(write(tmp_path, b"\xef\xbb\xbf" + text.encode("utf-8"))).name == "Test arm"
+    assert loads("\ufeff" + text).name == "Test arm"
+    path = write(tmp_path, b"\xef\xbb\xbf" * 2 + text.encode("utf-8"))
+    assert_names(rejection(path), "two byte order marks", "may have one")
+    with pytest.raises(RobotFileError, match="two byte order marks"):
+        loads("\ufeff\ufeff" + text)
+    # a bad byte after the mark is named by its place in the file
+    assert_names(rejection(write(tmp_path, b"\xef\xbb\xbfname = '\xff'\n")), "byte 11")
+
+
+URDF_TEXT = '<?xml version="1.0"?>\n<robot name="arm"><link name="base"/></robot>\n'
+
+
+@pytest.mark.parametrize(
+    ("name", "content", "fragments"),
+    [
+        ("arm.urdf", URDF_TEXT, ["arm.urdf: a URDF, not a dhsim robot file", "-o "]),
+        ("arm.URDF", "garbage", ["a URDF", "dhsim import "]),
+        ("arm.xml", URDF_TEXT, ["XML (a URDF?)", "import ", "arm.urdf -o "]),
+        ("arm", '<robot name="arm"/>', ["XML (a URDF?)", "arm.urdf -o "]),
+        ("arm.toml", "\ufeff  <robot/>", ["XML", "arm.urdf -o ", "arm-imported.toml"]),
+        ("dh.csv", "theta,d,a,alpha\n0,0,100,0\n", ["a CSV file", "if it is a D-H table"]),
+    ],
+)
+def test_a_urdf_or_a_csv_is_named_with_the_command_that_imports_it(
+    tmp_path, name, content, fragments
+):
+    path = write(tmp_path, content, name)
+    message = rejection(path)
+    assert_names(message, *fragments)
+    command = message[message.index("dhsim import ") :]
+    source, target = command.removeprefix("dhsim import ").split(" -o ")
+    assert Path(target).suffix == ".toml" and Path(target) != path
+    assert Path(source).suffix.lower() in (".urdf", ".csv")
+    assert Path(source).parent == path.parent == Path(target).parent
+
+
+def test_the_import_command_is_quoted_for_the_shell(tmp_path):
+    import shlex
+
+    path = write(tmp_path, URDF_TEXT, "my arm.urdf")
+    message = rejection(path)
+    words = shlex.split(message[message.index("dhsim import ") :])
+    assert words == ["dhsim", "import", str(path), "-o", str(tmp_path / "my arm.toml")]
+
+
+def test_a_good_robot_file_named_csv_still_loads(tmp_path):
+    # the suffix alone does not refuse a good robot file
+    assert load(write(tmp_path, doc(), "arm.csv")).name == "Test arm"
+
+
+def test_a_name_or_pose_name_longer_than_the_bound_is_refused(tmp_path):
+    from dhsim_tui.core.validation import MAX_NAME_CHARS
+
+    def spread(text: str) -> str:  # a TOML string of short lines (line continuations)
+        lines = [text[i : i + 80] for i in range(0, len(text), 80)]
+        return '"""' + "\\\n".join(lines) + '"""'
+
+    data = doc()
+    data["name"] = PLACEHOLDER
+    fits = tomli_w.dumps(data).replace(repr(PLACEHOLDER), spread("n" * MAX_NAME_CHARS))
+    assert len(load(write(tmp_path, fits)).name) == MAX_NAME_CHARS
+    for length in (MAX_NAME_CHARS + 1, 900_000):
+        text = tomli_w.dumps(data).replace(repr(PLACEHOLDER), spread("n" * length))
+        message = rejection(write(tmp_path, text))
+        assert_names(message, f"name: a robot name has at most {MAX_NAME_CHARS} characters")
+        assert f"this one has {length}" in message and len(message) < 300
+    data = doc()
+    data["poses"]["p" * (MAX_NAME_CHARS + 1)] = [0.0, 0.0, 0.0]
+    message = rejection(write(tmp_path, data))
+    assert_names(message, "a pose name has at most", " … ")
+    assert len(message) < 400
+
+
+def test_a_long_key_or_value_from_the_file_is_quoted_shortened(tmp_path):
+    from dhsim_tui.core.text import SHOWN_CHARS
+
+    key = "k" * 3000 + "END"
+    message = rejection(write(tmp_path, f'name = "x"\n{key} = 1\n'))
+    assert_names(message, "kkkk … ", "kkkEND: unknown key")
+    assert len(message) < len(str(tmp_path)) + SHOWN_CHARS + 200
+    data = doc()
+    data["units"] = "u" * 5000
+    message = rejection(write(tmp_path, data))
+    assert_names(message, "units: the text 'uuu", " … ", "is not one of 'mm'")
+    assert len(message) < len(str(tmp_path)) + SHOWN_CHARS + 200
 
 
 def test_path_with_nul_byte_is_a_robot_file_error():

@@ -309,6 +309,45 @@ def test_inline_array_of_joints_changes_one_row(tmp_path):
     assert removed == [] and len(added) == 1 and added[0].startswith("    { ")
 
 
+# -- zero offsets are not written ------------------------------------------------------
+
+
+@pytest.mark.parametrize("path", BUNDLED_FILES, ids=lambda p: p.stem)
+def test_editing_joint_1s_theta_changes_one_line_and_writes_no_offset(tmp_path, path):
+    # the README: offsets are written only when they are not zero. Joint 1 of
+    # planar2 is equal to joint 2: the edited row is changed where it is, not
+    # dropped and written anew with every key (offset = 0.0 among them).
+    text = path.read_text(encoding="utf-8")
+
+    def edit(robot):
+        return editing.set_joint_field(robot, 0, "theta", robot.joints[0].theta + 1.0)
+
+    new, removed, added = edited(tmp_path, text, edit)
+    assert len(removed) == len(added) == 1, (removed, added)
+    assert "theta" in removed[0] and "offset" not in added[0]
+    assert comments(new) == comments(text)
+
+
+@pytest.mark.parametrize("path", BUNDLED_FILES, ids=lambda p: p.stem)
+def test_a_new_joint_is_written_like_its_neighbours_without_a_zero_offset(tmp_path, path):
+    text = path.read_text(encoding="utf-8")
+    new, _removed, added = edited(tmp_path, text, lambda r: editing.insert_joint(r, 0))
+    assert not any("offset" in line for line in added), added
+    assert comments(new) == comments(text)
+    if "[[joints]]" in text:  # the new table has the keys its neighbours have
+        assert "[[joints]]" in added and 'type = "revolute"' in added
+
+
+def test_an_offset_the_file_has_stays_when_it_becomes_zero(tmp_path):
+    # the user's line is kept, set to 0 (deleting it would drop its comment)
+    text = COMMENTED.replace("max = 135.0\n", "max = 135.0\noffset = 5.0   # zero mark\n", 1)
+    _new, removed, added = edited(
+        tmp_path, text, lambda r: editing.set_joint_field(r, 1, "offset", 0.0)
+    )
+    assert (removed, added) == (["offset = 5.0   # zero mark"], ["offset = 0.0   # zero mark"])
+    assert load(tmp_path / "arm.toml").joints[1].offset == 0.0
+
+
 def test_windows_line_ends_stay_windows_line_ends(tmp_path):
     path = tmp_path / "arm.toml"
     path.write_bytes(COMMENTED.replace("\n", "\r\n").encode("utf-8"))

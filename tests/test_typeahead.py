@@ -62,8 +62,8 @@ async def test_a_value_typed_right_after_enter_lands_in_the_editor_cell(tmp_path
         await pilot.pause()
         editor = app.screen
         assert isinstance(editor, EditorScreen)
-        # row 1, column "a" (#, type, theta, d, a): type -14 into it at once
-        burst(app, "right", "right", "right", "right", "enter", "ctrl+u", "-", "1", "4", "enter")
+        # row 1, column "a" (the cursor starts on theta: theta, d, a): type -14 at once
+        burst(app, "right", "right", "enter", "ctrl+u", "-", "1", "4", "enter")
         await until(
             pilot,
             lambda: app.screen is editor and editor.robot.joints[0].a == -14.0,

@@ -665,3 +665,17 @@ def test_no_source_no_prefix():
 
 def test_a_byte_order_mark_is_accepted():
     assert read_chain("\ufeff" + _urdf(ARM)).tip == "l2"
+
+
+def test_a_dhsim_comment_is_kept_and_other_comments_are_not():
+    plain = _urdf(ARM)
+    assert read_chain(plain).stored is None
+    body = plain.split("\n", 1)[1]
+    text = (
+        '<?xml version="1.0"?>\n<!-- a note -->\n<!-- dhsim-robot 1: first {"a": 1} -->\n'
+        + body.replace("</robot>", "<!-- dhsim-robot 1: second --></robot>")
+    )
+    chain = read_chain(text)
+    assert chain.stored == ' dhsim-robot 1: first {"a": 1} '
+    # the chain itself is the same as without the comments
+    assert [j.name for j in chain.joints] == [j.name for j in read_chain(plain).joints]

@@ -35,7 +35,12 @@ def read_file(path: Path, limit: int) -> tuple[bytes, os.stat_result]:
     try:
         # O_NONBLOCK: opening a pipe must not hang; fstat then refuses it
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with open(fd, "rb") as handle:
+        try:
+            handle = open(fd, "rb")  # noqa: SIM115 (closed by the with below)
+        except BaseException:
+            os.close(fd)  # a folder: open() refuses it and would leave fd open
+            raise
+        with handle:
             info = os.fstat(handle.fileno())
             if stat.S_ISDIR(info.st_mode):
                 raise file_error(f"{path}: is a folder, not a robot file")

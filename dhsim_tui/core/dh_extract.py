@@ -53,7 +53,7 @@ row 1's are 0, since frame 0 lies on joint 1's axis.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -176,6 +176,8 @@ def extract(
     convention: str = "standard",
     *,
     parallel_tol: float = PARALLEL_TOL,
+    parallel: Collection[int] = (),
+    length_tol: float = LENGTH_TOL,
 ) -> DHChain:
     """D-H base, rows and tool reproducing the chain of joint axis ``lines``.
 
@@ -191,18 +193,33 @@ def extract(
     huge and rounding costs about 1e-16/s of the size; as parallel lines the
     error is about s. No tolerance makes both small near s = 1e-8; the
     default keeps the geometry exact and leaves the huge d visible.
+
+    ``parallel``: pairs taken as parallel whatever their angle, each by the
+    number i of its first axis (from 1), pairing axis i with axis i + 1, or
+    the last axis with the tip's z axis: for a caller that knows the pair is
+    parallel but for rounding and checks that the result still reproduces
+    the chain closely enough (the URDF import does). Joint i + 1's axis then
+    runs parallel to joint i's, an error of the pair's angle, and the frames
+    after it are placed on the true axes again.
+
+    ``length_tol``: lengths below it times the chain's size count as zero
+    (coincident or intersecting axes, a zero d): looser than the default for
+    a source whose numbers were rounded (the error is then that length).
     """
     if convention not in CONVENTIONS:
         raise DhsimError(f"D-H convention {convention!r}: expected 'standard' or 'modified'")
     if not 0.0 <= parallel_tol < 1.0:
         raise DhsimError(f"parallel tolerance {parallel_tol!r}: expected 0 <= tol < 1")
+    forced = set(parallel)
     tip = _rigid(tip_home, "tip pose")
     axes = _axes(lines)
     scale = max(
         [1.0, float(np.linalg.norm(tip[:3, 3]))]
         + [float(np.linalg.norm(_foot(np.zeros(3), p, w))) for _, p, w in axes]
     )
-    tol = LENGTH_TOL * scale
+    if not 0.0 <= length_tol < 1e-3:
+        raise DhsimError(f"length tolerance {length_tol!r}: expected 0 <= tol < 1e-3")
+    tol = length_tol * scale
 
     _, p1, w1 = axes[0]
     frame = np.eye(4)
@@ -218,12 +235,12 @@ def extract(
             _, p_next, w_next = axes[i + 1]
             through, prefer = frame[:3, 3], frame[:3, 0]  # previous origin and x
             theta, d, a, alpha = _next_link(
-                frame, p_next, w_next, through, prefer, tol, parallel_tol
+                frame, p_next, w_next, through, prefer, tol, _tol(i, forced, parallel_tol)
             )
         else:  # the tip's z axis plays the next joint's
             tip_origin, tip_z, tip_x = tip[:3, 3], tip[:3, 2], tip[:3, 0]
             theta, d, a, alpha = _next_link(
-                frame, tip_origin, tip_z, tip_origin, tip_x, tol, parallel_tol
+                frame, tip_origin, tip_z, tip_origin, tip_x, tol, _tol(i, forced, parallel_tol)
             )
         # rounding noise on a zero (a Puma's d = 1e-17) becomes the zero
         d = 0.0 if abs(d) <= tol else d
@@ -236,6 +253,11 @@ def extract(
     tool = _inverse(frame) @ tip
     chain = DHChain("standard", base, tuple(rows), tool)
     return convert(chain, convention)
+
+
+def _tol(index: int, forced: set[int], parallel_tol: float) -> float:
+    """The parallel tolerance for the pair after axis ``index`` (from 0)."""
+    return math.inf if index + 1 in forced else parallel_tol
 
 
 def convert(chain: DHChain, convention: str) -> DHChain:

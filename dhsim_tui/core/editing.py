@@ -19,6 +19,7 @@ from dhsim_tui.core.model import (
     Tool,
     default_limits,
 )
+from dhsim_tui.core.text import counted
 from dhsim_tui.core.validation import check_number, perpendicular_axes
 
 JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max", "offset")
@@ -34,7 +35,7 @@ def parse_number(text: str, what: str = "value") -> float:
     if not stripped:
         raise DhsimError(f"{what}: type a number")
     try:
-        if "_" in stripped:  # float() would read 1_0 as 10
+        if "_" in stripped or not stripped.isascii():  # float() reads 1_0 and ١ too
             raise ValueError
         value = float(stripped)
     except ValueError:
@@ -46,7 +47,9 @@ def parse_numbers(text: str, count: int, what: str) -> tuple[float, ...]:
     """``"1, 2, 3"`` -> exactly ``count`` numbers."""
     items = [item for item in re.split(r"[,\s]+", text.strip()) if item]
     if len(items) != count:
-        raise DhsimError(f"{what}: expected {count} numbers separated by commas, got {len(items)}")
+        raise DhsimError(
+            f"{what}: expected {counted(count, 'number')} separated by commas, got {len(items)}"
+        )
     return tuple(parse_number(item, f"{what} item {i}") for i, item in enumerate(items, 1))
 
 

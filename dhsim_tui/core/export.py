@@ -4,7 +4,9 @@
 Every format carries the whole robot; numbers are written so they read back
 as the same float (``repr`` or :func:`~dhsim_tui.core.validation.fmt`).
 
-URDF: :mod:`dhsim_tui.core.urdf_export`.
+URDF: :mod:`dhsim_tui.core.urdf_export`. Besides the URDF's links and joints
+it holds the whole robot, as the JSON below, in a comment other tools ignore,
+so ``dhsim import`` gives back the very robot while the joints still match.
 
 CSV (format ``dhsim-dh-table 1``)
 ---------------------------------

@@ -46,6 +46,7 @@ from dhsim_tui.core.ik import solve
 from dhsim_tui.core.ik_judge import Judge
 from dhsim_tui.core.jacobian import controllable_rows, task_rank
 from dhsim_tui.core.model import Robot
+from dhsim_tui.core.text import counted
 
 #: a closed-form solution further off than this (same units) is polished numerically
 POLISH_ABOVE = 1e-9
@@ -233,11 +234,10 @@ def _numerical(
         why = (
             "the orientation is free"
             if position_only
-            else f"{robot.dof} joints for a {_task_size(robot, False)}-direction pose"
+            else f"{counted(robot.dof, 'joint')} for a {_task_size(robot, False)}-direction pose"
         )
-        note = (
-            f"{why}: the solutions form a continuous family; these are {len(found)} representatives"
-        )
+        shown = counted(len(found), "representative")
+        note = f"{why}: the solutions form a continuous family; these are {shown}"
     elif position_only:
         note = f"found by {len(starts)} numerical starts; a solution may be missing"
     else:

@@ -46,9 +46,16 @@ branches of every step always get different words:
 * **arm forward / reversed** (prismatic joint 3, Stanford): the wrist centre
   lies ahead of the point where axes 1 and 2 meet along joint 3's slide
   direction (forward), or behind it (reversed: the slide passes through it).
-* **wrist no flip / flip**: joint 5 is less than half a turn above (no flip)
-  or below (flip) its singular position, the one where axis 6 lines up with
-  axis 4 in the same direction.
+* **wrist no flip / flip** (the Robotics Toolbox for Python's n / f): no
+  flip when axis 6's direction has a non-negative component along
+  ``axis4 × axis5`` (all three where the joints put them), that is when joint
+  5 is turned less than half a turn *below* its singular position (where axis
+  6 lines up with axis 4 in the same direction); flip otherwise. (The
+  toolbox's ``Puma560.ikine_a`` keeps the middle Z-Y-Z Euler angle of the
+  wrist in frame 3 ≥ 0 for "n" and, the Puma's α4 being +90°, sets joint 5
+  to minus it, which is this rule; read from the joints' axes rather than
+  from the sign of the table's x4, it words the Puma's standard and modified
+  tables alike: tests/test_ik_labels_rtb.py.)
 """
 
 from __future__ import annotations

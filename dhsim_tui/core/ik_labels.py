@@ -29,9 +29,11 @@ def _elbow(g: Geometry, w2: Vec, shoulder: Vec, elbow: Vec, wrist: Vec) -> str:
 
 
 def _flip(g: Geometry, t5: float) -> str:
+    """No flip when joint 5 is turned below its singular position (axis 6 then
+    leans toward ``axis4 × axis5``): the Robotics Toolbox's n / f."""
     if math.isnan(g.wrist_singular):
         return ""
-    return "wrist no flip" if math.sin(t5 - g.wrist_singular) >= 0.0 else "wrist flip"
+    return "wrist no flip" if math.sin(t5 - g.wrist_singular) <= 0.0 else "wrist flip"
 
 
 def _label(*words: str) -> str:

@@ -296,7 +296,7 @@ def solve(
                         h5 + _RAD * remainder(t5, tau),
                         h6 + _RAD * atan2(sign * n21, -sign * n20),
                     )
-                    flip = "wrist no flip" if sin(t5 - singular) >= 0.0 else "wrist flip"
+                    flip = "wrist no flip" if sin(t5 - singular) <= 0.0 else "wrist flip"
                     out.append((q, f"{arm_words}, {flip}"))
                 continue
             # axis 6 on axis 4's line: only joint 4 + joint 6 (or their difference) counts
@@ -317,6 +317,6 @@ def solve(
                 h5 + _RAD * remainder(t5, tau),
                 h6 + _RAD * remainder(t6, tau),
             )
-            flip = "wrist no flip" if sin(t5 - singular) >= 0.0 else "wrist flip"
+            flip = "wrist no flip" if sin(t5 - singular) <= 0.0 else "wrist flip"
             out.append((q, f"{arm_words}, {flip}"))
     return out, dropped

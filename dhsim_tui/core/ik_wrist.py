@@ -159,7 +159,7 @@ def _spherical(g: Geometry, goal: Motion, free, fits: Callable) -> list[tuple]:
         for t4, t5, t6 in _wrist(g, rest, free):
             # _label(shoulder_word, elbow_word, _flip(g, t5)), written out
             if no_flip:
-                flip = "wrist no flip" if sin(t5 - singular) >= 0.0 else "wrist flip"
+                flip = "wrist no flip" if sin(t5 - singular) <= 0.0 else "wrist flip"
                 words = f"{arm_words}, {flip}" if arm_words else flip
             else:
                 words = arm_words

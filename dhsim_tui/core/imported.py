@@ -1,5 +1,6 @@
 """What an import gives: the robot, remarks for the user, and comment lines
-for the top of its robot file. A leaf shared by the URDF and CSV importers."""
+for the top of its robot file. A leaf shared by the URDF and CSV importers,
+with :func:`shortened` for the file text their messages quote."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from dataclasses import dataclass
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.model import Robot
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import printable, shortened
 
 
 @dataclass(frozen=True)
@@ -20,8 +21,13 @@ class ImportResult:
     header: tuple[str, ...] = ()
 
 
+def quoted(text: str, limit: int = 200) -> str:
+    """``repr`` of :func:`shortened` text: how a message names a file's word."""
+    return repr(shortened(text, limit))
+
+
 def check_choice(value: str, allowed: tuple[str, ...], what: str, source: str) -> None:
     if value not in allowed:
         raise DhsimError(
-            printable(f"{source}: {what} {value!r} is not one of {', '.join(allowed)}")
+            printable(f"{source}: {what} {quoted(value, 60)} is not one of {', '.join(allowed)}")
         )

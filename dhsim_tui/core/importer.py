@@ -2,23 +2,27 @@
 
 The URDF importer is :mod:`dhsim_tui.core.urdf_import`, the CSV one
 :mod:`dhsim_tui.core.csv_import`; this module reads the file and hands it on.
+A file larger than its kind's cap (:data:`MAX_IMPORT_BYTES`) is refused by
+its size, before a byte of it is read.
 """
 
 from __future__ import annotations
 
 import os
+import stat
 from pathlib import Path
 
 from dhsim_tui.core.atomicfile import read_file
-from dhsim_tui.core.csv_import import from_csv
+from dhsim_tui.core.csv_import import MAX_CSV_BYTES, from_csv
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.formats import IMPORT_SUFFIXES
 from dhsim_tui.core.imported import ImportResult
 from dhsim_tui.core.text import printable
+from dhsim_tui.core.urdf import MAX_URDF_BYTES
 from dhsim_tui.core.urdf_import import from_urdf
 
-#: files larger than this are refused before parsing (a URDF with meshes listed is < 1 MB)
-MAX_IMPORT_BYTES = 20_000_000
+#: files larger than this are refused unread, by kind
+MAX_IMPORT_BYTES = {".urdf": MAX_URDF_BYTES, ".csv": MAX_CSV_BYTES}
 
 __all__ = ["IMPORT_SUFFIXES", "ImportResult", "from_csv", "from_urdf", "import_file"]
 
@@ -42,7 +46,19 @@ def import_file(
                 f"not {kind or 'a file without a suffix'}"
             )
         )
-    raw, _ = read_file(path, MAX_IMPORT_BYTES)
+    limit = MAX_IMPORT_BYTES[kind]
+    try:
+        info = path.stat()
+    except (OSError, ValueError):
+        info = None  # read_file says what is wrong
+    if info is not None and stat.S_ISREG(info.st_mode) and info.st_size > limit:
+        raise DhsimError(
+            printable(
+                f"{path}: {info.st_size} bytes is more than dhsim imports from a {kind} file "
+                f"({limit} at most)"
+            )
+        )
+    raw, _ = read_file(path, limit)
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -10,9 +10,10 @@ from pathlib import Path
 from dhsim_tui.core.errors import RobotFileError
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import load
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import counted, printable, shortened
+from dhsim_tui.core.units import LENGTH_DECIMALS
 from dhsim_tui.core.validation import fmt
-from dhsim_tui.core.workspace import reach
+from dhsim_tui.core.workspace import arm_reach
 
 DEFAULT_ROBOT = "puma560"
 
@@ -102,11 +103,17 @@ def load_robot(argument: str | None = None) -> tuple[Robot, Path]:
 
 
 def describe(robot: Robot) -> str:
-    """The one-line summary ``dhsim check`` and ``dhsim list`` print. The reach
-    is a sum of floats, shown to 12 significant digits: finer than any robot is
-    built, and without the sum's last-bit noise (1033.9500000000001)."""
-    total = float(f"{reach(robot):.12g}")
+    """The one-line summary ``dhsim check`` and ``dhsim list`` print (a long
+    name shortened in the middle). The reach is the arm's own
+    (:func:`~dhsim_tui.core.workspace.arm_reach`: the farthest the tool gets
+    from frame 0's origin within the limits), the same in either convention,
+    shown to the robot unit's decimals (a tiny reach to 6 significant digits)."""
+    found = arm_reach(robot)
+    total = round(found, LENGTH_DECIMALS[robot.units]) + 0.0
+    if total == 0 and found > 0:  # a tiny arm: its reach, never "0"
+        total = float(f"{found:.6g}")
+    name = printable(shortened(robot.name))
     return (
-        f"{printable(robot.name)}: {robot.dof} joints, {robot.type_string}, "
+        f"{name}: {counted(robot.dof, 'joint')}, {robot.type_string}, "
         f"{robot.convention} D-H, reach {fmt(total)} {robot.units}"
     )

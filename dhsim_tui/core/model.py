@@ -15,7 +15,7 @@ from functools import cached_property
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.kinematics import Kinematics
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import printable, shortened
 from dhsim_tui.core.units import (
     AXES,
     CONVENTIONS,
@@ -206,10 +206,10 @@ class Robot:
         for pose_name, values in self.poses:
             if pose_name == name:
                 return values
-        known = printable(", ".join(self.pose_names) or "none")
+        known = printable(shortened(", ".join(self.pose_names) or "none"))
         raise DhsimError(
-            f"robot {printable(repr(self.name))} has no pose named {printable(repr(name))} "
-            f"(poses: {known})"
+            f"robot {printable(repr(shortened(self.name)))} has no pose named "
+            f"{printable(repr(shortened(name)))} (poses: {known})"
         )
 
     def mm(self, value_mm: float) -> float:

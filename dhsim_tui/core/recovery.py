@@ -23,8 +23,9 @@ import hashlib
 import json
 import os
 import re
+import traceback
 from dataclasses import dataclass
-from datetime import UTC, datetime
+from datetime import datetime, timezone
 from pathlib import Path
 
 from dhsim_tui.core.errors import RobotFileError
@@ -107,7 +108,7 @@ def write_recovery(robot: Robot, source: str | os.PathLike[str] | None) -> Path:
 
     Raises OSError when it cannot be written (the caller says so)."""
     target = recovery_file(source)
-    text = _header(source, datetime.now(UTC)) + dumps(robot)
+    text = _header(source, datetime.now(timezone.utc)) + dumps(robot)
     target.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
     tmp = target.with_name(f".{target.name}.{os.getpid()}.tmp")
     flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, "O_NOFOLLOW", 0)
@@ -128,6 +129,23 @@ def write_recovery(robot: Robot, source: str | os.PathLike[str] | None) -> Path:
             os.fsync(folder)
         finally:
             os.close(folder)
+    return target
+
+
+def crash_report(error: BaseException) -> Path | None:
+    """Write ``error``'s traceback to ``crash-<time>.txt`` beside the recovery
+    folder (private), for a bug report; its path, or None when it cannot be
+    written (the caller still says what happened, in one line)."""
+    stamp = datetime.now(timezone.utc).strftime("%Y%m%d-%H%M%S")
+    target = recovery_dir().parent / f"crash-{stamp}-{os.getpid()}.txt"
+    text = "".join(traceback.format_exception(type(error), error, error.__traceback__))
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        fd = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        with os.fdopen(fd, "w", encoding="utf-8", errors="backslashreplace") as handle:
+            handle.write(text)
+    except (OSError, ValueError):
+        return None
     return target
 
 

@@ -2,8 +2,14 @@
 
 Loading is strict: every key is checked for type and spelling and every
 problem is reported as one :class:`RobotFileError` naming the file and the
-field, with any control character from the file shown escaped (``\\x1b``).
-A UTF-8 byte order mark is accepted.
+field, with any control character from the file shown escaped (``\\x1b``)
+and any long name or key shortened in the middle. One UTF-8 byte order mark
+is accepted (not two). Before the TOML parser sees a file, it is scanned for
+what would make the parser slow or greedy (a key of thousands of dotted
+parts takes Python's parser minutes and gigabytes): a key path of more than
+:data:`MAX_KEY_PARTS` parts or a line of more than :data:`MAX_LINE_CHARS`
+characters is refused, naming the line. A URDF or a CSV given as a robot
+file is named as such, with the ``dhsim import`` command that reads it.
 
 Saving is atomic (temporary file, fsync, rename) and ``load(save(robot)) ==
 robot`` exactly. Saving over a robot file keeps the user's comments and
@@ -18,8 +24,9 @@ import difflib
 import hashlib
 import os
 import re
+import shlex
 import stat
-import tomllib
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,11 +35,17 @@ from typing import Any
 
 import tomli_w
 
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10: the same parser, as a package
+    import tomli as tomllib
+
 from dhsim_tui.core.atomicfile import file_error as _error
 from dhsim_tui.core.atomicfile import read_file, remove_stale_temps, write_atomic
 from dhsim_tui.core.errors import DhsimError, RobotFileError
+from dhsim_tui.core.formats import IMPORT_SUFFIXES
 from dhsim_tui.core.model import Joint, Robot, Tool, default_limits
-from dhsim_tui.core.text import printable
+from dhsim_tui.core.text import counted, printable, shortened
 from dhsim_tui.core.tomledit import update_text
 from dhsim_tui.core.validation import check_choice, check_number
 
@@ -54,6 +67,14 @@ JOINT_REQUIRED = ("theta", "d", "a", "alpha")
 TOOL_KEYS = ("xyz", "rpy")
 #: robot files larger than this are refused before parsing (a robot is < 10 kB)
 MAX_FILE_BYTES = 1_000_000
+#: a key path (``a.b.c = 1``, ``[a.b]``, ``[[a.b]]``, ``{ a.b = 1 }``) of more
+#: parts than this is refused before parsing: dhsim's files need at most 3
+#: (``poses."a b" = ...`` under a header); Python's parser takes time and
+#: memory growing with the square of the parts (20,000: 7 s and 1.6 GB)
+MAX_KEY_PARTS = 16
+#: a line longer than this is refused before parsing: the longest a robot
+#: file needs is a pose of 32 values or a name (at most 1,000 characters)
+MAX_LINE_CHARS = 10_000
 BOM = b"\xef\xbb\xbf"
 
 
@@ -80,6 +101,71 @@ class FileStamp:
 
 # -- reading ---------------------------------------------------------------------
 
+#: one part of a key: a bare word or a quoted string on one line. No nested
+#: repetition (Python 3.10 has no possessive quantifiers): inside a repeat,
+#: each alternative matches one character of a class of its own, so a failed
+#: match backs off in linear time, never exponential.
+_KEY_PART = r"""(?:[A-Za-z0-9_-]+|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
+#: what the scan passes over whole: comments and strings (dots in them are no keys)
+_SKIPPED = (
+    r"#[^\n]*"
+    r'|"""(?:[^"\\]|\\[\s\S]|"(?!""))*"{3,5}'
+    r"|'''(?:[^']|'(?!''))*'{3,5}"
+    r'|"(?:[^"\\\n]|\\.)*"'
+    r"|'[^'\n]*'"
+)
+#: a run of more than MAX_KEY_PARTS dotted parts, a comment or string passed
+#: over, or a quote that opens no string (the parser stops there: so does the scan).
+#: Values have runs of at most 2 (``1.5``, ``07:32:00.25``); only keys have more.
+_SCAN = re.compile(
+    rf"(?P<deep>(?<![A-Za-z0-9_.-]){_KEY_PART}(?:[ \t]*\.[ \t]*{_KEY_PART}){{{MAX_KEY_PARTS}}})"
+    rf"|{_SKIPPED}|(?P<stop>[\"'])"
+)
+
+
+def _hostile(text: str) -> str | None:
+    """What in ``text`` would make the TOML parser slow or greedy, naming the
+    line (None: nothing). Linear in the text: strings and comments are passed
+    over once, and a run of dotted parts is tried from its first part only
+    (from each part only when spaces stand around the dots: at most
+    MAX_KEY_PARTS tries of a part)."""
+    for match in _SCAN.finditer(text):
+        if match.lastgroup == "stop":
+            break
+        if match.lastgroup == "deep":
+            line = text.count("\n", 0, match.start()) + 1
+            return (
+                f"line {line}: a key path of more than {MAX_KEY_PARTS} dotted parts "
+                f"({shortened(match.group(), 40)}); a robot file's keys have 1 to 3"
+            )
+    for number, line in enumerate(text.split("\n"), start=1):
+        if len(line) > MAX_LINE_CHARS:
+            return (
+                f"line {number} is {len(line)} characters long; "
+                f"a robot file's lines have at most {MAX_LINE_CHARS}"
+            )
+    return None
+
+
+def parse_toml(text: str, source: str = "<robot>") -> dict[str, Any]:
+    """The TOML document in ``text`` (one byte order mark may start it),
+    refused before parsing when it holds what would make the parser hang
+    (:func:`_hostile`); every failure is a RobotFileError starting with ``source``."""
+    text = text.removeprefix("\ufeff")  # a byte order mark, as some editors write
+    if text.startswith("\ufeff"):
+        raise _error(f"{source}: starts with two byte order marks; a file may have one")
+    problem = _hostile(text)
+    if problem is not None:
+        raise _error(f"{source}: {problem}")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise _error(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:  # tomllib recurses into nested arrays and inline tables
+        raise _error(f"{source}: not valid TOML: nested too deeply") from None
+    except ValueError as exc:  # e.g. an integer of more than 4300 digits
+        raise _error(f"{source}: not valid TOML: {exc}") from None
+
 
 def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) -> None:
     for key in table:
@@ -88,7 +174,7 @@ def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) 
             hint = (
                 f" (did you mean {close[0]!r}?)" if close else f" (allowed: {', '.join(allowed)})"
             )
-            raise DhsimError(printable(f"{where}{key}: unknown key{hint}"))
+            raise DhsimError(printable(f"{where}{shortened(key)}: unknown key{hint}"))
 
 
 def _table(value: object, where: str) -> Mapping[str, Any]:
@@ -150,9 +236,9 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
         )
     poses: list[tuple[str, tuple[float, ...]]] = []
     for name, values in _table(data.get("poses", {}), "poses").items():
-        where = printable(f"poses.{name}")
+        where = printable(f"poses.{shortened(name)}")
         if not isinstance(values, list):
-            raise DhsimError(f"{where}: expected a list of {len(joints)} numbers")
+            raise DhsimError(f"{where}: expected a list of {counted(len(joints), 'number')}")
         numbers = tuple(check_number(v, f"{where}[{i}]") for i, v in enumerate(values, start=1))
         poses.append((name, numbers))
     base_height = data.get("base_height", 0.0)
@@ -173,15 +259,7 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
 
 def loads(text: str, source: str = "<robot>") -> Robot:
     """Parse and validate robot TOML; errors start with ``source``."""
-    text = text.removeprefix("\ufeff")  # a byte order mark, as some editors write
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _error(f"{source}: not valid TOML: {exc}") from None
-    except RecursionError:  # tomllib recurses into nested arrays and inline tables
-        raise _error(f"{source}: not valid TOML: nested too deeply") from None
-    except ValueError as exc:  # e.g. an integer of more than 4300 digits
-        raise _error(f"{source}: not valid TOML: {exc}") from None
+    data = parse_toml(text, source)
     try:
         return robot_from_dict(data)
     except DhsimError as exc:
@@ -189,21 +267,61 @@ def loads(text: str, source: str = "<robot>") -> Robot:
 
 
 def _decode(raw: bytes, path: Path) -> str:
+    """The text of the file (a byte order mark kept: :func:`loads` takes one off)."""
     try:
-        return raw.removeprefix(BOM).decode("utf-8")
+        return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        start = exc.start + (len(BOM) if raw.startswith(BOM) else 0)
-        raise _error(f"{path}: not a text file (invalid UTF-8 at byte {start})") from None
+        raise _error(f"{path}: not a text file (invalid UTF-8 at byte {exc.start})") from None
 
 
 def _real(path: Path) -> Path:
     return Path(os.path.realpath(path))
 
 
+def _import_hint(path: Path, text: str, failed: bool) -> RobotFileError | None:
+    """A URDF or a CSV given where a robot file is expected: the error that
+    says so, with the ``dhsim import`` command that reads it (None: not one).
+    XML is known by its start (TOML never starts with ``<``); a ``.urdf`` or
+    ``.csv`` name only counts when the file did not load (``failed``)."""
+    suffix = path.suffix.lower()
+    xml = text.removeprefix("\ufeff").lstrip().startswith("<")
+    if not xml and not (failed and suffix in IMPORT_SUFFIXES):
+        return None
+    source = path if suffix in IMPORT_SUFFIXES else path.with_suffix(".urdf")
+    target = path.with_suffix(".toml")
+    if target == path:
+        target = path.with_name(f"{path.stem}-imported.toml")
+    command = f"dhsim import {shlex.quote(str(source))} -o {shlex.quote(str(target))}"
+    if suffix == ".csv":
+        what = "a CSV file, not a dhsim robot file (TOML); if it is a D-H table, import it"
+    elif suffix == ".urdf":
+        what = "a URDF, not a dhsim robot file (TOML); import it"
+    else:
+        what = (
+            "XML (a URDF?), not a dhsim robot file (TOML); dhsim imports a URDF "
+            "from a .urdf file: give it that suffix and import it"
+        )
+    return _error(f"{path}: {what}: {command}")
+
+
+def _load_text(path: Path, raw: bytes) -> Robot:
+    text = _decode(raw, path)
+    hint = _import_hint(path, text, failed=False)
+    if hint is not None:
+        raise hint
+    try:
+        return loads(text, str(path))
+    except RobotFileError:
+        hint = _import_hint(path, text, failed=True)
+        if hint is not None:
+            raise hint from None
+        raise
+
+
 def load(path: str | os.PathLike[str]) -> Robot:
     """Read a robot file; every failure is a RobotFileError naming the file."""
     path = Path(path)
-    return loads(_decode(read_file(path, MAX_FILE_BYTES)[0], path), str(path))
+    return _load_text(path, read_file(path, MAX_FILE_BYTES)[0])
 
 
 def load_with_stamp(path: str | os.PathLike[str]) -> tuple[Robot, FileStamp]:
@@ -211,7 +329,7 @@ def load_with_stamp(path: str | os.PathLike[str]) -> tuple[Robot, FileStamp]:
     Temporary files left next to it by a killed save are removed."""
     path = Path(path)
     raw, info = read_file(path, MAX_FILE_BYTES)
-    robot = loads(_decode(raw, path), str(path))
+    robot = _load_text(path, raw)
     real = _real(path)
     remove_stale_temps(real)
     return robot, FileStamp(real, info.st_mtime_ns, len(raw), hashlib.sha256(raw).hexdigest())
@@ -320,7 +438,7 @@ def render(robot: Robot, base_text: str | None = None) -> str:
         except RobotFileError:
             current = None
         try:
-            tomllib.loads(base)
+            parse_toml(base)  # not TOML (or hostile): tomlkit is not given it
             data, defaults = robot_to_dict(robot, full=True), _defaults(robot)
             text = update_text(base, data, defaults, current, ordered=("poses",))
             if "\r\n" in base and base.count("\n") == base.count("\r\n"):  # Windows lines
@@ -331,7 +449,9 @@ def render(robot: Robot, base_text: str | None = None) -> str:
             return text  # type: ignore[return-value]
     text = dumps(robot)
     if not _reads_back(text, robot):
-        raise RobotFileError(f"cannot save {printable(robot.name)!r}: it would not read back")
+        raise RobotFileError(
+            f"cannot save {printable(shortened(robot.name))!r}: it would not read back"
+        )
     return text
 
 
@@ -412,6 +532,6 @@ def _text_or_none(raw: bytes | None) -> str | None:
 
 def _is_toml(text: str | None) -> bool:
     try:
-        return text is not None and isinstance(tomllib.loads(text), dict)
-    except (ValueError, RecursionError):  # TOMLDecodeError is a ValueError
+        return text is not None and isinstance(parse_toml(text), dict)
+    except RobotFileError:
         return False

@@ -4,7 +4,8 @@ A robot file is somebody else's text. Its name, pose names or a mistyped key
 may hold an escape sequence (``ESC [ 2 J`` clears the screen), a C1 control
 or a bidirectional override (U+202E turns the rest of a line around). Names
 that hold one are refused on load (:func:`control_character`); every message
-that quotes file content passes it through :func:`printable` first.
+that quotes file content passes it through :func:`printable` first, and
+text that may be long (a name, a key) through :func:`shortened`.
 """
 
 from __future__ import annotations
@@ -50,3 +51,26 @@ def printable(text: str) -> str:
     if not any(is_control(c) for c in text):
         return text
     return "".join(_escape(c) if is_control(c) else c for c in text)
+
+
+#: what stands for the middle of a shortened text
+ELLIPSIS = " … "
+#: the most characters of a file's text a message or a summary quotes
+SHOWN_CHARS = 200
+
+
+def shortened(text: str, limit: int = SHOWN_CHARS) -> str:
+    """``text`` if it has at most ``limit`` characters, else its start and its
+    end with `` … `` between, ``limit`` characters in all: a name or a key
+    from a file is quoted whole when it is sane and never floods a line.
+    (Pass the result through :func:`printable` before it is shown.)"""
+    if len(text) <= limit:
+        return text
+    room = max(limit - len(ELLIPSIS), 2)
+    head = (room + 1) // 2
+    return f"{text[:head]}{ELLIPSIS}{text[len(text) - (room - head) :]}"
+
+
+def counted(count: int, word: str, plural: str | None = None) -> str:
+    """``1 joint``, ``6 joints``, ``0 joints``: a number and its noun in agreement."""
+    return f"{count} {word if count == 1 else plural or word + 's'}"

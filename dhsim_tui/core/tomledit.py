@@ -257,7 +257,10 @@ def _row_key(row: Any, keys: Sequence[str]) -> tuple:
 
 def _match(old: list[tuple], new: list[tuple]) -> list[int | None]:
     """For each new row, the old row it reuses (or None for a fresh one):
-    unchanged runs first, then moved rows, then changed rows in place."""
+    unchanged runs first, then moved rows, then changed rows in place. When
+    as many rows stay unchanged in their places as that keeps, and it would
+    make a fresh row, every row stays in its place instead: of two equal
+    rows, the one edited is changed where it is (not dropped and written anew)."""
     plan: list[int | None] = [None] * len(new)
     used: set[int] = set()
     opcodes = difflib.SequenceMatcher(None, old, new, autojunk=False).get_opcodes()
@@ -280,6 +283,10 @@ def _match(old: list[tuple], new: list[tuple]) -> list[int | None]:
             for i, j in zip(free_old, free_new, strict=False):
                 plan[j] = i
                 used.add(i)
+    if len(old) == len(new) and None in plan:
+        unchanged = sum(1 for j, i in enumerate(plan) if i is not None and old[i] == new[j])
+        if sum(a == b for a, b in zip(old, new, strict=True)) >= unchanged:
+            return list(range(len(new)))
     return plan
 
 
@@ -291,12 +298,25 @@ def _sync_rows(rows: AoT | Array, new: Sequence[Mapping], defaults: Any, current
     else:
         old_keys = [_row_key(row, keys) for row in old_rows]
     plan = _match(old_keys, [_row_key(row, keys) for row in new])
-    row_defaults = defaults if isinstance(defaults, list) else [{}] * len(new)
+    given = defaults if isinstance(defaults, list) else []
+    row_defaults = [d if isinstance(d, Mapping) else {} for d in given[: len(new)]]
+    row_defaults += [{}] * (len(new) - len(row_defaults))
     if plan != list(range(len(old_rows))):
-        _rearrange(rows, old_rows, plan, new)
+        # a fresh row is written like the old ones: a key none of them
+        # writes is left out while it has its default (no "offset = 0.0")
+        written = {str(key) for row in old_rows for key in row}
+        fresh = [
+            {k: v for k, v in row.items() if k in written or not _is_default(k, v, default)}
+            for row, default in zip(new, row_defaults, strict=True)
+        ]
+        _rearrange(rows, old_rows, plan, fresh)
     for j, i in enumerate(plan):
         if i is not None:
             _sync_table(old_rows[i], new[j], row_defaults[j], None)
+
+
+def _is_default(key: str, value: Any, defaults: Mapping[str, Any]) -> bool:
+    return key in defaults and _plain(defaults[key]) == _plain(value)
 
 
 def _fresh_row(rows: AoT | Array, values: Mapping[str, Any]) -> Item:

@@ -21,12 +21,24 @@ Conventions are the URDF specification's:
 
 Everything a user can get wrong raises :class:`DhsimError` with one line that
 starts with ``source`` (when given) and names the culprit, with file text
-escaped by :func:`printable`: malformed XML, a DOCTYPE or entity declaration
-(refused before anything is expanded), a missing or duplicate link, a link
-with two parents, a cycle, more than one root, a non-finite number, a zero
-axis, missing limits; on the chain, a mimic, floating or planar joint. Joints
-off the chain are checked only for what the tree needs (their name, parent
-and child); their numbers are not read.
+escaped by :func:`printable` and cut in the middle past 200 characters:
+malformed XML, a DOCTYPE or entity declaration (refused before anything is
+expanded), a missing or duplicate link, a link with two parents, a cycle,
+more than one root, a non-finite number, a zero axis, missing limits; on the
+chain, a mimic, floating or planar joint, or more moving joints than a robot
+holds. Joints off the chain are checked only for what the tree needs (their
+name, parent and child); their numbers are not read.
+
+A hostile file costs little: the text is at most :data:`MAX_URDF_BYTES`
+characters, and a first streaming pass (expat, which expands nothing) stops
+at the first DOCTYPE, past :data:`MAX_URDF_NODES` elements and attributes,
+past :data:`MAX_URDF_LINKS` links or joints and past :data:`MAX_URDF_DEPTH`
+levels of nesting, before any tree is built;
+walking the chain stops at its 33rd moving joint, before any number is read.
+
+A comment that starts with :data:`DHSIM_COMMENT` (what ``dhsim export
+--format urdf`` writes: the robot as dhsim holds it) is kept as the chain's
+``stored`` text; other tools, and the chain itself, ignore it.
 """
 
 from __future__ import annotations
@@ -40,9 +52,22 @@ from xml.parsers import expat
 import numpy as np
 
 from dhsim_tui.core.errors import DhsimError, TipNeeded
+from dhsim_tui.core.imported import quoted, shortened
 from dhsim_tui.core.text import printable
-from dhsim_tui.core.units import MAX_ABS
+from dhsim_tui.core.units import MAX_ABS, MAX_JOINTS, MIN_JOINTS
 
+#: a URDF longer than this (characters, or bytes of its file) is refused unread:
+#: real ones, meshes listed by name, are well under 1 MB
+MAX_URDF_BYTES = 4_000_000
+#: elements and attributes together, counted while streaming (a real URDF of
+#: 1000 links has about 60 000)
+MAX_URDF_NODES = 200_000
+#: elements nested deeper than this are refused (a URDF's are 5 deep)
+MAX_URDF_DEPTH = 50
+#: links, and joints, a URDF may hold (the chain uses at most 33 of them)
+MAX_URDF_LINKS = 1_000
+#: a comment starting with this word holds dhsim's own fields (urdf_export)
+DHSIM_COMMENT = "dhsim-robot"
 #: the range given to a continuous joint: a full turn each way (radians)
 CONTINUOUS_LIMIT = 2 * math.pi
 #: URDF joint types the chain may hold, and the kind each becomes
@@ -113,6 +138,8 @@ class UrdfChain:
     tip: str
     joints: tuple[UrdfJoint, ...]
     name: str = ""  # the <robot name="..."> attribute
+    #: the text of the file's first :data:`DHSIM_COMMENT` comment, or None
+    stored: str | None = None
 
     @property
     def moving(self) -> tuple[UrdfJoint, ...]:
@@ -193,6 +220,11 @@ def read_chain(
     """
     prefix = f"{source}: " if source else ""
     try:
+        if len(text) > MAX_URDF_BYTES:
+            raise DhsimError(
+                f"{len(text)} characters is more than dhsim reads from a URDF "
+                f"({MAX_URDF_BYTES} at most)"
+            )
         return _read_chain(text, tip, base)
     except TipNeeded as exc:
         raise TipNeeded(printable(f"{prefix}{exc}"), exc.leaves) from None
@@ -201,52 +233,93 @@ def read_chain(
 
 
 def _read_chain(text: str, tip: str | None, base: str | None) -> UrdfChain:
-    robot = _parse(text)
+    robot, stored = _parse(text)
     links = _links(robot)
     joints = _joints(robot, links)
     parent_joint = {j.child: j for j in joints}
     _check_tree(links, joints, parent_joint)
+    known = set(links)
     if base is None:
         base = next(link for link in links if link not in parent_joint)
-    elif base not in links:
-        raise DhsimError(f"base: no link named {base!r}{_hint(links)}")
+    elif base not in known:
+        raise DhsimError(f"base: no link named {quoted(base)}{_hint(links)}")
     if tip is None:
         tip = _only_leaf(base, links, joints)
-    elif tip not in links:
-        raise DhsimError(f"tip: no link named {tip!r}{_hint(links)}")
+    elif tip not in known:
+        raise DhsimError(f"tip: no link named {quoted(tip)}{_hint(links)}")
     path = []
+    moving = 0
     link = tip
     while link != base:
         if link not in parent_joint:
             raise DhsimError(
-                f"link {base!r} is not an ancestor of link {tip!r}; no chain joins them"
+                f"link {quoted(base)} is not an ancestor of link {quoted(tip)}; no chain joins them"
             )
-        path.append(parent_joint[link])
-        link = parent_joint[link].parent
+        edge = parent_joint[link]
+        moving += edge.element.get("type") != "fixed"
+        if moving > MAX_JOINTS:
+            raise DhsimError(
+                f"the chain from link {quoted(base)} to link {quoted(tip)} has more than "
+                f"{MAX_JOINTS} moving joints; a robot has {MIN_JOINTS} to {MAX_JOINTS}"
+            )
+        path.append(edge)
+        link = edge.parent
     chain = tuple(_joint(edge.name, edge.element) for edge in reversed(path))
     if not any(j.moves for j in chain):
-        raise DhsimError(f"no moving joint between link {base!r} and link {tip!r}")
-    return UrdfChain(base=base, tip=tip, joints=chain, name=robot.get("name", "") or "")
+        raise DhsimError(f"no moving joint between link {quoted(base)} and link {quoted(tip)}")
+    return UrdfChain(
+        base=base, tip=tip, joints=chain, name=robot.get("name", "") or "", stored=stored
+    )
 
 
-def _parse(text: str) -> ET.Element:
-    """The ``<robot>`` element; no DOCTYPE, no entity, well-formed."""
+def _parse(text: str) -> tuple[ET.Element, str | None]:
+    """The ``<robot>`` element and the first :data:`DHSIM_COMMENT` comment's
+    text; no DOCTYPE, no entity, well-formed, within the caps."""
     text = text.removeprefix("\ufeff")
     checker = expat.ParserCreate()
+    counts = {"nodes": 0, "depth": 0, "link": 0, "joint": 0}
+    comments: list[str] = []
 
     def refuse(*_args: object) -> None:
-        raise _Refused
+        raise _Refused("a DOCTYPE or declaration is not allowed in a URDF")
+
+    def start(tag: str, attributes: list[str]) -> None:
+        counts["nodes"] += 1 + len(attributes) // 2
+        if counts["nodes"] > MAX_URDF_NODES:
+            raise _Refused(
+                f"more than {MAX_URDF_NODES} XML elements and attributes; "
+                "dhsim reads URDFs of fewer"
+            )
+        counts["depth"] += 1
+        if counts["depth"] > MAX_URDF_DEPTH:
+            raise _Refused(f"elements nested more than {MAX_URDF_DEPTH} deep; a URDF's are not")
+        if tag in ("link", "joint") and counts["depth"] == 2:  # the robot's own
+            counts[tag] += 1
+            if counts[tag] > MAX_URDF_LINKS:
+                raise _Refused(
+                    f"more than {MAX_URDF_LINKS} <{tag}> elements; "
+                    f"dhsim reads URDFs of at most {MAX_URDF_LINKS}"
+                )
+
+    def end(_tag: str) -> None:
+        counts["depth"] -= 1
+
+    def comment(data: str) -> None:
+        if not comments and data.lstrip().startswith(DHSIM_COMMENT):
+            comments.append(data)
 
     checker.StartDoctypeDeclHandler = refuse
     checker.EntityDeclHandler = refuse
     checker.ElementDeclHandler = refuse
     checker.AttlistDeclHandler = refuse
+    checker.ordered_attributes = True
+    checker.StartElementHandler = start
+    checker.EndElementHandler = end
+    checker.CommentHandler = comment
     try:
         checker.Parse(text, True)
-    except _Refused:
-        raise DhsimError(
-            f"line {checker.CurrentLineNumber}: a DOCTYPE or declaration is not allowed in a URDF"
-        ) from None
+    except _Refused as exc:
+        raise DhsimError(f"line {checker.CurrentLineNumber}: {exc}") from None
     except (expat.ExpatError, ValueError, RecursionError) as exc:  # ValueError: a lone surrogate
         raise DhsimError(f"not valid XML: {exc}") from None
     try:
@@ -254,8 +327,8 @@ def _parse(text: str) -> ET.Element:
     except (ET.ParseError, ValueError, RecursionError) as exc:
         raise DhsimError(f"not valid XML: {exc}") from None
     if root.tag != "robot":
-        raise DhsimError(f"the top element is <{root.tag}>; a URDF's is <robot>")
-    return root
+        raise DhsimError(f"the top element is <{shortened(root.tag, 60)}>; a URDF's is <robot>")
+    return root, (comments[0] if comments else None)
 
 
 def _links(robot: ET.Element) -> list[str]:
@@ -266,7 +339,7 @@ def _links(robot: ET.Element) -> list[str]:
         if not name:
             raise DhsimError("a <link> has no name")
         if name in seen:
-            raise DhsimError(f"two links are named {name!r}")
+            raise DhsimError(f"two links are named {quoted(name)}")
         seen.add(name)
         names.append(name)
     if not names:
@@ -294,20 +367,20 @@ def _joints(robot: ET.Element, links: list[str]) -> list[_Edge]:
         if not name:
             raise DhsimError("a <joint> has no name")
         if name in seen:
-            raise DhsimError(f"two joints are named {name!r}")
+            raise DhsimError(f"two joints are named {quoted(name)}")
         seen.add(name)
         ends = []
         for end in ("parent", "child"):
             tags = element.findall(end)
             if len(tags) != 1:
                 count = "no" if not tags else "more than one"
-                raise DhsimError(f"joint {name!r}: {count} <{end} link=...>")
+                raise DhsimError(f"joint {quoted(name)}: {count} <{end} link=...>")
             link = tags[0].get("link")
             if not link:
-                raise DhsimError(f"joint {name!r}: <{end}> has no link")
+                raise DhsimError(f"joint {quoted(name)}: <{end}> has no link")
             if link not in known:
                 raise DhsimError(
-                    f"joint {name!r}: {end} link {link!r} is not a <link> of the robot"
+                    f"joint {quoted(name)}: {end} link {quoted(link)} is not a <link> of the robot"
                 )
             ends.append(link)
         joints.append(_Edge(name, ends[0], ends[1], element))
@@ -320,26 +393,28 @@ def _check_tree(links: list[str], joints: list[_Edge], parent_joint: dict[str, _
     for edge in joints:
         if edge.child in seen:
             raise DhsimError(
-                f"link {edge.child!r} has two parents: joints {seen[edge.child]!r} and "
-                f"{edge.name!r} both lead to it"
+                f"link {quoted(edge.child)} has two parents: joints "
+                f"{quoted(seen[edge.child])} and {quoted(edge.name)} both lead to it"
             )
         seen[edge.child] = edge.name
     done: set[str] = set()
     for start in links:
         trail: list[str] = []
+        on_trail: set[str] = set()
         link = start
         while link in parent_joint and link not in done:
-            if link in trail:
+            if link in on_trail:
                 loop = [*trail[trail.index(link) :], link]
-                raise DhsimError("the joints form a cycle: links " + " <- ".join(map(repr, loop)))
+                raise DhsimError("the joints form a cycle: links " + _listed(loop, " <- "))
             trail.append(link)
+            on_trail.add(link)
             link = parent_joint[link].parent
         done.update(trail)
     roots = [link for link in links if link not in parent_joint]
     if len(roots) != 1:
         raise DhsimError(
             f"the links form {len(roots)} separate trees, with roots "
-            + ", ".join(map(repr, roots))
+            + _listed(roots)
             + "; a URDF has one root link"
         )
 
@@ -358,26 +433,33 @@ def _only_leaf(base: str, links: list[str], joints: list[_Edge]) -> str:
             leaves.append(link)
     if len(leaves) > 1:
         raise TipNeeded(
-            f"the links below {base!r} form a tree, not a chain; choose a tip among its "
-            f"{len(leaves)} leaf links: " + ", ".join(map(repr, leaves)),
+            f"the links below {quoted(base)} form a tree, not a chain; choose a tip among its "
+            f"{len(leaves)} leaf links: " + _listed(leaves),
             tuple(leaves),
         )
     return leaves[0]
 
 
 def _hint(links: list[str]) -> str:
-    listed = ", ".join(map(repr, links[:10])) + (", ..." if len(links) > 10 else "")
-    return f" (links: {listed})"
+    return f" (links: {_listed(links)})"
+
+
+def _listed(names: list[str], separator: str = ", ", most: int = 10) -> str:
+    """The first ``most`` names, each quoted and cut to 60 characters, and how
+    many more there are."""
+    shown = separator.join(quoted(name, 60) for name in names[:most])
+    more = len(names) - most
+    return shown + (f"{separator}... ({more} more)" if more > 0 else "")
 
 
 def _joint(name: str, element: ET.Element) -> UrdfJoint:
-    where = f"joint {name!r}"
+    where = f"joint {quoted(name)}"
     urdf_type = element.get("type")
     if urdf_type in _REFUSED_TYPES:
         raise DhsimError(f"{where}: a {urdf_type} joint cannot be part of an arm")
     if urdf_type not in _KINDS:
         listed = ", ".join(_KINDS)
-        shown = "no type" if urdf_type is None else f"type {urdf_type!r}"
+        shown = "no type" if urdf_type is None else f"type {quoted(urdf_type, 60)}"
         raise DhsimError(f"{where}: {shown}; the chain's joints are {listed}")
     if element.find("mimic") is not None:
         raise DhsimError(f"{where}: a mimic joint (moved by another joint) cannot be imported")
@@ -438,10 +520,9 @@ def _number(tag: ET.Element, key: str, where: str) -> float:
 
 
 def _finite(word: str, where: str) -> float:
-    shown = word if len(word) <= 40 else word[:40] + "..."
     if not _NUMBER.fullmatch(word):
-        raise DhsimError(f"{where}: {shown!r} is not a finite number")
+        raise DhsimError(f"{where}: {quoted(word, 60)} is not a finite number")
     value = float(word)
     if not math.isfinite(value) or abs(value) > MAX_ABS:
-        raise DhsimError(f"{where}: {shown!r} is out of range (|value| <= {MAX_ABS:g})")
+        raise DhsimError(f"{where}: {quoted(word, 60)} is out of range (|value| <= {MAX_ABS:g})")
     return value

@@ -18,6 +18,20 @@ Limits are dhsim's min/max; effort and velocity, which URDF requires and
 dhsim does not know, are placeholders (an XML comment says so). Each link
 gets a cylinder from its origin to the next frame's origin and each
 prismatic joint a thinner "rail" over its range, so the arm can be seen.
+
+dhsim's own fields, which a URDF has no place for (the name as written, the
+unit, the convention, the D-H table as the user wrote it, the base height
+and shorthand, the named poses, limits in degrees), ride along in a second
+comment before ``<robot>``, which every URDF tool ignores::
+
+    <!-- dhsim-robot 1: ...
+         {"format": "dhsim-robot", "version": 1, "name": "Puma 560", ...} -->
+
+Its JSON object is exactly what ``dhsim export --format json`` writes for the
+robot (:func:`dhsim_fields`), on one line, with any ``--`` in a string written
+``-\\u002d`` (a comment may not hold two dashes) and U+FFFE/U+FFFF as
+``\\ufffe``/``\\uffff``. ``dhsim import`` gives the very robot back from it
+when the URDF's joints still match it (:mod:`dhsim_tui.core.urdf_import`).
 """
 
 from __future__ import annotations
@@ -34,6 +48,7 @@ from dhsim_tui.core.model import Joint, Robot
 from dhsim_tui.core.orientation import cos_sin, rpy_angles
 from dhsim_tui.core.text import printable
 from dhsim_tui.core.units import UNITS
+from dhsim_tui.core.urdf import DHSIM_COMMENT
 from dhsim_tui.core.workspace import reach
 
 #: URDF requires effort (N or N·m) and velocity (m/s or rad/s) limits; dhsim has none
@@ -49,6 +64,12 @@ RAIL_FRACTION = 0.6
 ZERO_LENGTH_M = 1e-10
 #: numbers below this (radians, or of the arm's size in metres) are rounding noise
 NOISE = 1e-15
+#: the stored robot's format: the JSON export's (dhsim_tui.core.export)
+STORED_FORMAT = "dhsim-robot"
+STORED_VERSION = 1
+#: the JSON export's joint fields, in its order
+STORED_JOINT_FIELDS = ("theta", "d", "a", "alpha", "offset", "min", "max")
+STORED_JOINT_VALUE = "theta = q + offset (revolute), d = q + offset (prismatic)"
 LINK_RGBA = "0.55 0.6 0.7 1"
 RAIL_RGBA = "0.85 0.55 0.2 1"
 
@@ -168,7 +189,7 @@ class _Urdf:
                 rail = self.cylinder(*ends, RAIL_FRACTION * self.radius, "dhsim_rail")
                 visuals[i].append(rail)
 
-        parts = [self.header()]
+        parts = [self.header(), stored_comment(self.source)]
         # html.escape, not xml.sax.saxutils: that one loads urllib (~11 ms at start-up)
         name = html.escape(_xml_safe(self.source.name), quote=True)
         parts.append(f'<robot name="{name}">\n')
@@ -235,6 +256,50 @@ def _xml_safe(text: str) -> str:
     character XML 1.0 cannot hold (U+FFFE, U+FFFF) written as ``\\uXXXX``."""
     text = printable(text)
     return "".join(f"\\u{ord(c):04x}" if c in "\ufffe\uffff" else c for c in text)
+
+
+def dhsim_fields(robot: Robot) -> dict:
+    """The whole robot as the JSON export's object (format ``dhsim-robot``
+    version 1; :mod:`dhsim_tui.core.export` documents it)."""
+
+    def floats(values) -> list[float]:
+        return [float(v) for v in values]
+
+    return {
+        "format": STORED_FORMAT,
+        "version": STORED_VERSION,
+        "name": robot.name,
+        "units": {"length": robot.units, "angle": "deg"},
+        "convention": robot.convention,
+        "parameter_order": list(STORED_JOINT_FIELDS),
+        "joint_value": STORED_JOINT_VALUE,
+        "base": {
+            "height": float(robot.base_height),
+            "z": robot.base_z,
+            "x": robot.base_x,
+            "xyz": floats(robot.base_xyz),
+            "rpy": floats(robot.base_rpy),
+        },
+        "tool": {"xyz": floats(robot.tool.xyz), "rpy": floats(robot.tool.rpy)},
+        "joints": [
+            {"type": j.type, **{name: float(getattr(j, name)) for name in STORED_JOINT_FIELDS}}
+            for j in robot.joints
+        ],
+        "poses": {name: floats(values) for name, values in robot.poses},
+    }
+
+
+def stored_comment(robot: Robot) -> str:
+    """The ``<!-- dhsim-robot 1: ... -->`` comment holding :func:`dhsim_fields`."""
+    text = json.dumps(dhsim_fields(robot), ensure_ascii=False, allow_nan=False)
+    text = text.replace("--", "-\\u002d").replace("\ufffe", "\\ufffe")
+    text = text.replace("\uffff", "\\uffff")
+    return (
+        f"<!-- {DHSIM_COMMENT} {STORED_VERSION}: the robot as dhsim holds it, so that dhsim "
+        "import gives it back\n"
+        "     exactly while the joints below still match it (other tools ignore this).\n"
+        f"     {text} -->\n"
+    )
 
 
 def to_urdf(robot: Robot) -> str:

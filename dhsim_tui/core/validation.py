@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.text import control_character, printable
+from dhsim_tui.core.text import control_character, counted, printable, shortened
 from dhsim_tui.core.units import (
     AXES,
     CONVENTIONS,
@@ -31,6 +31,9 @@ if TYPE_CHECKING:
 
 #: a pose name that needs no quotes after ``poses.`` (a TOML bare key)
 _BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+#: the longest robot or pose name: any real one is far shorter, and a saved
+#: file's lines stay well within what a robot file may hold
+MAX_NAME_CHARS = 1000
 
 
 def fmt(value: float) -> str:
@@ -50,7 +53,8 @@ def fmt(value: float) -> str:
 def pose_where(name: str) -> str:
     """How a pose is named in messages: ``poses.ready``, or quoted (and with
     control characters escaped) when the name is not a bare word:
-    ``poses."x\\x1b[2J"``."""
+    ``poses."x\\x1b[2J"``; a long name is shortened in the middle."""
+    name = shortened(name)
     if _BARE_KEY.fullmatch(name):
         return f"poses.{name}"
     quoted = printable(name).replace('"', '\\"')
@@ -74,7 +78,7 @@ def check_number(value: object, where: str) -> float:
 
 def _describe(value: object) -> str:
     if isinstance(value, str):
-        return f"the text {value!r}"
+        return f"the text {shortened(value)!r}"
     if isinstance(value, bool):
         return f"the boolean {str(value).lower()}"
     if isinstance(value, int) and abs(value) > 1e300:
@@ -163,11 +167,20 @@ def check_text(value: str, where: str, what: str) -> None:
         raise DhsimError(f"{where}: {what} may not hold control characters ({found})")
 
 
+def check_name_length(value: str, where: str, what: str) -> None:
+    """A name of at most :data:`MAX_NAME_CHARS` characters."""
+    if len(value) > MAX_NAME_CHARS:
+        raise DhsimError(
+            f"{where}: {what} has at most {MAX_NAME_CHARS} characters; this one has {len(value)}"
+        )
+
+
 def check_robot(robot: Robot) -> None:
     """Raise :class:`DhsimError` on the first thing that makes ``robot`` invalid."""
     if not isinstance(robot.name, str) or not robot.name.strip():
         raise DhsimError("name: a robot needs a non-empty name")
     check_text(robot.name, "name", "a robot name")
+    check_name_length(robot.name, "name", "a robot name")
     check_choice(robot.units, UNITS, "units")
     check_choice(robot.convention, CONVENTIONS, "convention")
     height = check_number(robot.base_height, "base_height")
@@ -201,6 +214,7 @@ def check_robot(robot: Robot) -> None:
             raise DhsimError("poses: a pose needs a non-empty name")
         where = pose_where(name)
         check_text(name, where, "a pose name")
+        check_name_length(name, where, "a pose name")
         if name in seen:
             raise DhsimError(f"{where}: the name is used twice")
         seen.add(name)
@@ -210,11 +224,13 @@ def check_robot(robot: Robot) -> None:
 def check_joint_values(robot: Robot, q: object, where: str = "q") -> tuple[float, ...]:
     """A joint vector as floats: one finite number per joint, each within limits."""
     if isinstance(q, str | bytes) or not isinstance(q, Iterable):
-        raise DhsimError(f"{where}: expected {robot.dof} joint values, got {_describe(q)}")
+        raise DhsimError(
+            f"{where}: expected {counted(robot.dof, 'joint value')}, got {_describe(q)}"
+        )
     values = list(q)
     if len(values) != robot.dof:
         raise DhsimError(
-            f"{where}: expected {robot.dof} joint values ({', '.join(robot.labels)}), "
+            f"{where}: expected {counted(robot.dof, 'joint value')} ({', '.join(robot.labels)}), "
             f"got {len(values)}"
         )
     out = []

@@ -185,6 +185,10 @@ class ControlScreen(
         self._update_step_caption()
         self._apply_size(self.app.size.width, self.app.size.height)
         self._refresh_pose()
+        if self._said[0]:  # a message given before the screen was up
+            message, error = self._said
+            self._said = ("", False)
+            self.say(message, error)
 
     def on_resize(self, event: Resize) -> None:
         self._apply_size(event.size.width, event.size.height)
@@ -323,6 +327,8 @@ class ControlScreen(
         if (message, error) == self._said:
             return
         self._said = (message, error)
+        if not self._ready:  # said before the screen is up (after a reload): shown at mount
+            return
         status = self.query_one("#status", Static)
         status.set_class(error, "-error")
         status.update(Text(message), layout=False)

@@ -40,7 +40,7 @@ KEY_HINTS: tuple[Hint, ...] = (
     ("e", "edit table"),
     ("?", "help"),
     ("q", "quit"),
-    ("mouse", "click, drag, wheel"),
+    ("mouse", "click, wheel"),
 )
 #: the width of the left column of hints when two share a line
 HINT_COLUMN = 21

@@ -13,11 +13,11 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
 from textual.markup import escape
-from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
 from dhsim_tui.core.text import printable
+from dhsim_tui.screens.modal import Dialog
 from dhsim_tui.terminal import ascii_mode, shown
 
 DIALOG_CSS = """
@@ -59,7 +59,7 @@ def reason_of(error: BaseException, path: object) -> str:
     return text
 
 
-class Confirm(ModalScreen[bool]):
+class Confirm(Dialog[bool]):
     """A yes/no question: ``y`` or ``enter`` for yes, ``n`` or ``escape`` for no."""
 
     BINDINGS = [
@@ -83,7 +83,7 @@ class Confirm(ModalScreen[bool]):
         self.dismiss(yes)
 
 
-class Choice(ModalScreen[str | None]):
+class Choice(Dialog[str | None]):
     """Pick one of ``choices`` with the arrows and ``enter``; ``escape`` cancels."""
 
     BINDINGS = [Binding("escape", "cancel", "Cancel", id="choice.cancel", tooltip="Cancel")]
@@ -124,7 +124,7 @@ class Choice(ModalScreen[str | None]):
         self.dismiss(None)
 
 
-class SaveGuard(ModalScreen[str]):
+class SaveGuard(Dialog[str]):
     """Unsaved changes: ``s`` save, ``d`` discard, ``escape`` stay."""
 
     BINDINGS = [
@@ -160,9 +160,10 @@ class SaveGuard(ModalScreen[str]):
         self.dismiss(answer)
 
 
-class FileChanged(ModalScreen[str]):
+class FileChanged(Dialog[str]):
     """The file changed on disk since it was read: ``o`` overwrite, ``r`` reload
-    (the changes here are lost), ``c``/``escape`` cancel."""
+    (the file as it is, the changes made here put back on top), ``c``/``escape``
+    cancel."""
 
     BINDINGS = [
         Binding(
@@ -177,7 +178,7 @@ class FileChanged(ModalScreen[str]):
             "answer('reload')",
             "Reload",
             id="changed.reload",
-            tooltip="Read the file again; the changes made here are lost",
+            tooltip="Read the file again and put the changes made here back on top",
         ),
         Binding(
             "c,escape",
@@ -202,7 +203,8 @@ class FileChanged(ModalScreen[str]):
                 Text(
                     shown(
                         f"{short_path(self._path)} changed on disk since you opened it{why}. "
-                        "Overwrite it, reload it (lose your changes), or cancel?"
+                        "Overwrite it, reload it (the file as it is now, your changes "
+                        "put back on top), or cancel?"
                     )
                 )
             )
@@ -212,7 +214,7 @@ class FileChanged(ModalScreen[str]):
         self.dismiss(answer)
 
 
-class ReadOnly(ModalScreen[bool]):
+class ReadOnly(Dialog[bool]):
     """The file cannot be written: ``a`` save as another file, ``c``/``escape`` cancel."""
 
     BINDINGS = [

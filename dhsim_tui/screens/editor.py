@@ -47,7 +47,7 @@ from dhsim_tui.screens.export_dialog import export_flow
 from dhsim_tui.screens.help import HelpScreen
 from dhsim_tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
 from dhsim_tui.screens.recover import offer_recovery
-from dhsim_tui.screens.save_flow import is_bundled, save_flow
+from dhsim_tui.screens.save_flow import is_bundled, reapply_edits, save_flow
 from dhsim_tui.terminal import ascii_mode, shown
 from dhsim_tui.typeahead import FRAME, draw_later
 from dhsim_tui.widgets.views_panel import ViewsPanel, is_wide
@@ -99,6 +99,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self._drawn_at = 0.0  # when the robot was last drawn (time.monotonic)
         #: the joints table's row for the cursor at the next redraw (after add, move)
         self._cursor_row: int | None = None
+        #: the fields table's row (its key) for the cursor at the next redraw (a new pose)
+        self._field_row: str | None = None
 
     # -- state ------------------------------------------------------------------
     @property
@@ -113,7 +115,10 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     def compose(self) -> ComposeResult:
         with Container(id="editor-layout"):
             with Vertical(id="editor-tables"):
-                yield FittedTable(id="joints-table", cursor_type="cell", zebra_stripes=True)
+                # "#" stays in view when a wide table scrolls sideways
+                yield FittedTable(
+                    id="joints-table", cursor_type="cell", zebra_stripes=True, fixed_columns=1
+                )
                 yield FittedTable(id="fields-table", cursor_type="row", zebra_stripes=True)
                 yield Static("", id="editor-status")
             yield ViewsPanel(self.renderer, id="preview")
@@ -136,6 +141,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             if self.history.push(robot):
                 self.say(message)
         self._redraw()
+        # the first cell Enter edits: joint 1's theta (# is only a number)
+        self._joints.move_cursor(row=0, column=JOINT_COLUMNS.index("theta"))
         self._joints.focus()
 
     def on_resize(self, event: Resize) -> None:
@@ -185,6 +192,11 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         title = f"{name}{mark} · {robot.type_string} · {where}"
         self._joints.border_title = escape(shown(title, self.app))
         self._fields.show(("field", "value"), field_rows(robot))
+        if self._field_row is not None:
+            keys = [key for key, _ in field_rows(robot)]
+            if self._field_row in keys:
+                self._fields.move_cursor(row=keys.index(self._field_row))
+            self._field_row = None
         self._fields.border_title = shown("Robot · poses (a adds, d deletes)", self.app)
         self.app.sub_title = f"{name}{mark}"
         frames = robot.kinematics.frames(robot.home)
@@ -268,7 +280,13 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         index = min(event.coordinate.row, self.robot.dof - 1)
         if column == "type":
             self.action_toggle_type()
-        elif column != "#":
+        elif column == "#":
+            self.say(
+                "# is the joint's number, not a value: ctrl+↑ ctrl+↓ move the joint, "
+                "a adds one, d deletes it; → goes to its values",
+                error=True,
+            )
+        else:
             self.edit_joint_field(index, column)
 
     def on_data_table_row_selected(self, event: DataTable.RowSelected) -> None:
@@ -314,11 +332,11 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             )
             return
         name = await ask_new_pose_name(self.app, self.robot)
-        if name is not None:
-            self._attempt(
-                lambda: editing.set_pose(self.robot, name, self.robot.home),
-                f"pose {name} added (home values; enter edits them)",
-            )
+        if name is not None and self._attempt(
+            lambda: editing.set_pose(self.robot, name, self.robot.home),
+            f"pose {name} added (home values; enter on it edits them)",
+        ):
+            self._field_row = f"pose:{name}"  # the cursor goes to the new pose
 
     @work(exclusive=True, group="modal")
     async def action_delete(self) -> None:
@@ -374,6 +392,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     async def save_robot(self, save_as: bool = False) -> bool:
         """Save (asking a name when needed); True once nothing is unsaved."""
         source = self.path or self.template
+        base = self.saved
         result = await save_flow(
             self.app,
             self.robot,
@@ -388,11 +407,15 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self.path, self.template = result.path, None
         self.saved, self.stamp = result.robot, result.stamp
         self.new_text = self.imported_from = None
-        if result.kind == "reloaded":  # the file's content wins; the edits stay in undo
-            self.history.push(result.robot)
-            self.say(f"reloaded {short_path(result.path, 50)}; ctrl+z brings your edits back")
+        if result.kind == "reloaded":  # the file's content, my edits re-applied on top
+            mine = self.robot
+            again = await reapply_edits(self.app, base, mine, result.robot)
+            if again.combined:  # undo takes out my edits, back to the file's
+                self.history = editing.History(result.robot)
+                self.history.push(again.robot)
+            self.say(f"reloaded {short_path(result.path, 40)}: {again.message}", not again.combined)
         self.refresh_robot()
-        return True
+        return not self.dirty
 
     @work(exclusive=True, group="modal")
     async def action_save(self) -> None:

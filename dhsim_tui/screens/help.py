@@ -8,14 +8,14 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import VerticalScroll
 from textual.markup import escape
-from textual.screen import ModalScreen
 from textual.widgets import Static
 
 from dhsim_tui.core.text import printable
+from dhsim_tui.screens.modal import Dialog
 from dhsim_tui.terminal import shown
 
 
-class HelpScreen(ModalScreen[None]):
+class HelpScreen(Dialog[None]):
     """Lists (keys, what they do); any of escape, ``?`` or ``q`` closes it."""
 
     BINDINGS = [

@@ -23,7 +23,6 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
 from textual.markup import escape
-from textual.screen import ModalScreen
 from textual.widgets import Input, Label, OptionList
 from textual.widgets.option_list import Option
 
@@ -34,6 +33,7 @@ from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import FileStamp, load, load_with_stamp
 from dhsim_tui.core.text import printable
 from dhsim_tui.screens.dialogs import DIALOG_CSS, Choice, reason_of, short_path
+from dhsim_tui.screens.modal import Dialog
 from dhsim_tui.terminal import shown
 
 ROBOTS_DIR = Path("robots")
@@ -138,7 +138,7 @@ def summary(path: Path, imports_left: int = SUMMARY_IMPORTS) -> str:
         return f"(cannot be opened: {reason_of(exc, path)})"
 
 
-class OpenRobot(ModalScreen[Opened | None]):
+class OpenRobot(Dialog[Opened | None]):
     """Pick a file from the list or type a path; a bad file shows the loader's
     (or importer's) message and nothing else changes. Dismisses with
     :class:`Opened`. ``importing``: only imports (``.urdf``, ``.csv``)."""
@@ -286,7 +286,7 @@ class OpenRobot(ModalScreen[Opened | None]):
         self.dismiss(None)
 
 
-class ImportNotes(ModalScreen[None]):
+class ImportNotes(Dialog[None]):
     """What an import did: the importer's notes (what it checked, what is
     odd), and that the robot is not saved yet. ``enter`` or ``escape`` closes."""
 

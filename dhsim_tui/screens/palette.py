@@ -273,13 +273,39 @@ class DhsimCommands(Provider):
 
 class DhsimPalette(CommandPalette):
     """Textual's palette with dhsim's commands; in ASCII mode its search icon
-    and placeholder are ASCII too (its borders: the end of dhsim.tcss)."""
+    and placeholder are ASCII too (its borders: the end of dhsim.tcss).
+
+    Keys that arrive fast around it (``ctrl+p`` then ``escape`` then ``ctrl+p``
+    in one read) used to end dhsim with Textual's traceback: a second palette
+    pushed while the first was still leaving the screen (``DuplicateIds``),
+    or one of its timers querying its list after it had gone (``NoMatches``).
+    So the app opens no other until this one is ``gone`` (unmounted), and
+    once closing it stops its timers and its watchers act on nothing."""
 
     def __init__(self) -> None:
         super().__init__(
             placeholder=shown("Search for commands… (escape closes)"), id="--command-palette"
         )
+        self._leaving = False
+        self.gone = False
+
+    def on_unmount(self) -> None:
+        self.gone = True
 
     def on_mount(self) -> None:
         if ascii_mode(self.app):
             self.query_one(SearchIcon).icon = ">"
+
+    def dismiss(self, result=None):
+        self._leaving = True
+        self._stop_busy_countdown()
+        self._stop_no_matches_countdown()
+        return super().dismiss(result)
+
+    def _watch__list_visible(self) -> None:
+        if not self._leaving and self.is_mounted:
+            super()._watch__list_visible()
+
+    async def _watch__show_busy(self) -> None:
+        if not self._leaving and self.is_mounted:
+            await super()._watch__show_busy()

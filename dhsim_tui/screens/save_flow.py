@@ -20,6 +20,7 @@ from textual.app import App
 from dhsim_tui.core import editing
 from dhsim_tui.core.errors import DhsimError, RobotFileError
 from dhsim_tui.core.library import bundled_dir
+from dhsim_tui.core.merge import Side, merge
 from dhsim_tui.core.model import Robot
 from dhsim_tui.core.robotfile import (
     FileChangedError,
@@ -29,7 +30,14 @@ from dhsim_tui.core.robotfile import (
     read_stamp,
     save,
 )
-from dhsim_tui.screens.dialogs import Confirm, FileChanged, ReadOnly, reason_of, short_path
+from dhsim_tui.screens.dialogs import (
+    Choice,
+    Confirm,
+    FileChanged,
+    ReadOnly,
+    reason_of,
+    short_path,
+)
 from dhsim_tui.screens.open_robot import ROBOTS_DIR
 from dhsim_tui.screens.value_entry import ValueEntry
 from dhsim_tui.terminal import shown
@@ -167,8 +175,50 @@ def _reload(target: Path, tell: Report) -> SaveResult | None:
         where = short_path(target, MESSAGE_PATH_LIMIT)
         tell(f"cannot reload: {reason_of(exc, target)} — {where}", True)
         return None
-    tell(f"reloaded {short_path(target, MESSAGE_PATH_LIMIT)} (your changes were dropped)")
     return SaveResult("reloaded", robot, target, stamp)
+
+
+@dataclass(frozen=True)
+class Reapplied:
+    """After a reload: the robot to show (the file's with my edits on top),
+    and what to say about it."""
+
+    robot: Robot
+    message: str
+    combined: bool  # False: the two could not be combined; ``robot`` is mine
+
+
+async def reapply_edits(app: App, base: Robot | None, mine: Robot, theirs: Robot) -> Reapplied:
+    """The file as it is on disk (``theirs``) with my unsaved edits (against
+    ``base``, what the file held when it was read) put back on top; each
+    field both sides changed is asked about, naming it and both values
+    (escape keeps the file's)."""
+    found = merge(base if base is not None else theirs, mine, theirs)
+    choices: dict[str, Side] = {}
+    for conflict in found.conflicts:
+        answer = await app.push_screen_wait(
+            Choice(
+                f"{conflict.label}: changed here and on disk",
+                [
+                    ("mine", f"keep yours: {conflict.mine}"),
+                    ("theirs", f"keep the file's: {conflict.theirs}"),
+                ],
+                "mine",
+                hint="↑↓ choose · enter picks · escape keeps the file's",
+            )
+        )
+        choices[conflict.key] = "mine" if answer == "mine" else "theirs"
+    try:
+        merged = found.resolve(choices)
+    except DhsimError as exc:
+        return Reapplied(mine, f"{exc}; nothing changed here (ctrl+s asks again)", False)
+    kept = sum(1 for side in choices.values() if side == "mine")
+    asked = f"; {len(choices)} asked, {kept} of yours kept" if choices else ""
+    if merged == theirs:
+        return Reapplied(merged, f"the file's version (none of your edits left){asked}", True)
+    return Reapplied(
+        merged, f"the file's changes, with your edits on top{asked} (ctrl+z takes yours out)", True
+    )
 
 
 def file_text(path: Path | None) -> str | None:

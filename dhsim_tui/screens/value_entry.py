@@ -11,11 +11,11 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
 from textual.markup import escape
-from textual.screen import ModalScreen
 from textual.widgets import Input, Label
 
 from dhsim_tui.core.errors import DhsimError
 from dhsim_tui.core.text import printable
+from dhsim_tui.screens.modal import Dialog
 from dhsim_tui.terminal import shown
 
 #: the Input's own keys (ctrl+u, backspace, enter...) and what they do
@@ -54,7 +54,7 @@ class OrderedInput(Input):
 TITLE_LIMIT = 44
 
 
-class ValueEntry(ModalScreen[Any]):
+class ValueEntry(Dialog[Any]):
     """Type a value, ``enter`` to accept, ``escape`` to cancel (returns None).
 
     ``check`` turns the text into a value (a number, a name, a robot...) or
