@@ -11,6 +11,7 @@ import errno
 import json
 import math
 import os
+import pathlib
 import subprocess
 import sys
 import textwrap
@@ -219,6 +220,8 @@ def test_a_folder_that_cannot_be_read_gets_a_message(capsys, tmp_path, monkeypat
         return real_stat(path, *args, **kwargs)
 
     monkeypatch.setattr(os, "stat", stat)
+    if hasattr(pathlib, "_NormalAccessor"):  # Python 3.10: pathlib kept its own os.stat
+        monkeypatch.setattr(pathlib._NormalAccessor, "stat", staticmethod(stat))
     code, _, err = run(capsys, "check", str(locked / "arm.toml"))
     assert_one_line(code, err)
     assert f"{locked / 'arm.toml'}: cannot read: permission denied" in err
