@@ -43,9 +43,9 @@ import warnings
 import numpy as np
 
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.ik import solve
-from dhsim_tui.core.ik_all import all_solutions
-from dhsim_tui.core.jacobian import jacobian, manipulability
+from dhsim_tui.core.analysis.jacobian import jacobian, manipulability
+from dhsim_tui.core.ik.numerical import solve
+from dhsim_tui.core.ik.solutions import all_solutions
 
 try:  # optional: the toolbox is only compared with, never needed
     with warnings.catch_warnings():

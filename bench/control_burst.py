@@ -21,9 +21,9 @@ import time
 
 from textual import events
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.jog import set_joint, step_size
+from dhsim_tui.core.motion.jog import set_joint, step_size
+from dhsim_tui.tui.app import DhsimApp
 
 #: the app counts as settled when no frame has been drawn for this long
 QUIET = 1.0

@@ -18,9 +18,9 @@ import time
 
 from textual import events
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.editor import EditorScreen
 
 QUIET = 1.0  # seconds without a frame that count as settled
 TARGET = 0.5

@@ -16,7 +16,7 @@ import timeit
 import numpy as np
 
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.jacobian import COMPILE_AFTER, jacobian, manipulability
+from dhsim_tui.core.analysis.jacobian import COMPILE_AFTER, jacobian, manipulability
 
 
 def median_seconds(fn, number: int, repeat: int = 15) -> float:

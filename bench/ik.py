@@ -26,8 +26,8 @@ import time
 import numpy as np
 
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.ik import solve
-from dhsim_tui.core.jog import cartesian_move, move_pose
+from dhsim_tui.core.ik.numerical import solve
+from dhsim_tui.core.motion.jog import cartesian_move, move_pose
 
 START = {
     "puma560": (-20.0, 50.0, -170.0, 10.0, 40.0, 0.0),

@@ -22,8 +22,9 @@ import time
 
 import numpy as np
 
-from dhsim_tui.core import ik_analytic, load_robot
-from dhsim_tui.core.ik_all import all_solutions
+from dhsim_tui.core import load_robot
+from dhsim_tui.core.ik import analytic as ik_analytic
+from dhsim_tui.core.ik.solutions import all_solutions
 
 ANALYTIC = ("puma560", "irb140", "ur5", "stanford")
 NUMERICAL = ("panda",)

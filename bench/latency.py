@@ -24,8 +24,8 @@ import time
 
 from textual import events
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
+from dhsim_tui.tui.app import DhsimApp
 
 
 async def measure(
@@ -67,9 +67,9 @@ def first_frame_and_memory(
     script = f"""
 import asyncio, resource, time
 t0 = time.perf_counter()
-import dhsim_tui.cli  # what the dhsim command loads before the app
+import dhsim_tui.cli.main  # what the dhsim command loads before the app
 from dhsim_tui.core import load_robot
-from dhsim_tui.app import DhsimApp
+from dhsim_tui.tui.app import DhsimApp
 async def main():
     robot, path = load_robot({robot_name!r})
     app = DhsimApp(robot, path, {renderer!r})

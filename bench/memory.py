@@ -14,7 +14,7 @@ from __future__ import annotations
 import gc
 import time
 
-from dhsim_tui.core.editing import History, new_robot, set_joint_field
+from dhsim_tui.core.model.editing import History, new_robot, set_joint_field
 
 EDITS = 3000
 JOINTS = 32

@@ -38,7 +38,7 @@ sys.path.insert(0, str(HERE.parent / "tests"))
 from pty_screen import PtyScreen  # noqa: E402
 
 from dhsim_tui.core import load, load_robot  # noqa: E402
-from dhsim_tui.core.errors import DhsimError  # noqa: E402
+from dhsim_tui.core.model.errors import DhsimError  # noqa: E402
 
 #: the keys a sequence draws from: the simulator's and the editor's, and typing
 KEYS = [

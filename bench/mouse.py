@@ -21,10 +21,10 @@ import time
 
 from textual.events import MouseDown, MouseMove, MouseUp
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.jog import snapped
-from dhsim_tui.widgets.joint_panel import BAR_START, JointRow, bar_value
+from dhsim_tui.core.motion.jog import snapped
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.joint_panel import BAR_START, JointRow, bar_value
 
 
 def _event(kind, row: JointRow, x: int, button: int = 1):

@@ -1,5 +1,5 @@
 """``python -m dhsim_tui`` runs the same command line as ``dhsim``."""
 
-from dhsim_tui.cli import main
+from dhsim_tui.cli.main import main
 
 raise SystemExit(main())

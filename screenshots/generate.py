@@ -16,10 +16,10 @@ from pathlib import Path
 
 from rich.color import ColorSystem
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screenshot import export_svg
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screenshot import export_svg
 
 HERE = Path(__file__).resolve().parent
 
@@ -180,7 +180,7 @@ DRAWINGS = [
 
 
 def main() -> None:
-    from dhsim_tui.cli import main as dhsim
+    from dhsim_tui.cli.main import main as dhsim
 
     prefixes = tuple(sys.argv[1:])
     for shot in SHOTS:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import strategies as st
 
-from dhsim_tui.core.model import AXES, UNITS, Joint, Robot, Tool
+from dhsim_tui.core.model.robot import AXES, UNITS, Joint, Robot, Tool
 from tests.conftest import reference_frames
 
 

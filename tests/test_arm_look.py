@@ -13,7 +13,6 @@ from conftest import reference_frames
 from rich.color import Color as RichColor
 from rich.color import ColorSystem
 
-from dhsim_tui.colour import THEMES, sixteen
 from dhsim_tui.core import bundled_names, load_robot
 from dhsim_tui.render.picture import CELL_ROLES, NO_ROLE, ROLE_INDEX, Look
 from dhsim_tui.render.plotext_picture import PlotextPainter
@@ -23,8 +22,9 @@ from dhsim_tui.scene.framing import fitted, framing_of
 from dhsim_tui.scene.oblique import Orbit, project_oblique
 from dhsim_tui.scene.projection import FRONT, SIDE, TOP, VIEWS, Polyline, ViewScene, limits_at
 from dhsim_tui.scene.raster import QUADRANTS, rasterize
-from dhsim_tui.widgets.legend import legend_items, pack
-from dhsim_tui.widgets.view_style import PALETTES, role_styles
+from dhsim_tui.tui.colour import THEMES, sixteen
+from dhsim_tui.tui.widgets.legend import legend_items, pack
+from dhsim_tui.tui.widgets.view_style import PALETTES, role_styles
 
 BUNDLED = bundled_names()
 #: quadrant pixels of each block glyph: upper left, upper right, lower left, lower right
@@ -305,9 +305,9 @@ def test_every_bundled_robot_draws_links_in_every_view(name):
 
 
 async def test_x_cycles_the_frames_and_the_legend_and_captions_say_which():
-    from dhsim_tui.app import DhsimApp
-    from dhsim_tui.widgets.arm_view import ArmView
-    from dhsim_tui.widgets.views_panel import ViewsPanel
+    from dhsim_tui.tui.app import DhsimApp
+    from dhsim_tui.tui.widgets.arm_view import ArmView
+    from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False)

@@ -21,21 +21,21 @@ from pty_screen import PtyScreen
 from rich.cells import cell_len, get_character_cell_size
 from textual.scrollbar import ScrollBar
 
-import dhsim_tui.app
-from dhsim_tui import cli
-from dhsim_tui.app import DhsimApp
+import dhsim_tui.tui.app
+from dhsim_tui.cli import main as cli
 from dhsim_tui.core import load_robot
-from dhsim_tui.screens.dialogs import SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.terminal import (
+from dhsim_tui.terminal.charset import (
     ascii_key,
     ascii_text,
     original_environ,
     to_ascii,
     wants_ascii,
 )
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.dialogs import SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 from tests.pilot_helpers import non_ascii_outside_views
 
 # -- which mode --------------------------------------------------------------------
@@ -111,7 +111,7 @@ def test_a_real_interpreter_started_in_the_c_locale_is_seen_as_ascii(variables, 
     env.update(variables)
     code = (
         "import json, os\n"
-        "from dhsim_tui.terminal import original_environ, wants_ascii\n"
+        "from dhsim_tui.terminal.charset import original_environ, wants_ascii\n"
         "print(json.dumps([os.environ.get('LC_CTYPE'), wants_ascii(os.environ),"
         " wants_ascii(original_environ())]))"
     )
@@ -132,7 +132,7 @@ def launched(monkeypatch):
     """main() up to the app: what run_app was given (no terminal needed)."""
     calls: list[dict] = []
     monkeypatch.setattr(cli, "has_terminal", lambda: True)
-    monkeypatch.setattr(dhsim_tui.app, "run_app", lambda *a, **k: calls.append(k) or 0)
+    monkeypatch.setattr(dhsim_tui.tui.app, "run_app", lambda *a, **k: calls.append(k) or 0)
     for stream in ("stdout", "stderr"):  # ASCII mode reconfigures them: not pytest's
         monkeypatch.setattr(sys, stream, io.TextIOWrapper(io.BytesIO(), encoding="utf-8"))
     for name in ("LC_ALL", "LC_CTYPE", "LANG", "TERM"):

@@ -9,15 +9,16 @@ import numpy as np
 import pytest
 from textual import events
 
-from dhsim_tui.app import DhsimApp
-from dhsim_tui.core import ik_all, load_robot
-from dhsim_tui.core.editing import set_pose
-from dhsim_tui.core.ik import rotation_error
-from dhsim_tui.core.jog import branch_caption, branch_index
-from dhsim_tui.core.workspace import reach
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.palette import commands_for
-from dhsim_tui.widgets.pose_panel import PosePanel
+from dhsim_tui.core import load_robot
+from dhsim_tui.core.analysis.workspace import reach
+from dhsim_tui.core.ik import solutions as ik_all
+from dhsim_tui.core.ik.numerical import rotation_error
+from dhsim_tui.core.model.editing import set_pose
+from dhsim_tui.core.motion.jog import branch_caption, branch_index
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.palette import commands_for
+from dhsim_tui.tui.widgets.pose_panel import PosePanel
 from tests.pilot_helpers import until
 
 GOOD = (-20.0, 50.0, -170.0, 10.0, 40.0, 0.0)  # a Puma pose with room to move
@@ -158,7 +159,9 @@ def type_without_waiting(app, key: str) -> None:
 
 
 async def test_b_moves_smoothly_when_motion_is_on_and_escape_stops_it(monkeypatch):
-    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 2.0)  # slow enough for a busy machine
+    monkeypatch.setattr(
+        "dhsim_tui.tui.screens.motion.DURATION", 2.0
+    )  # slow enough for a busy machine
     app = app_for(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)

@@ -15,12 +15,12 @@ from rich.style import Style
 from textual.geometry import Region
 from textual.strip import Strip
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import Joint, load_robot
-from dhsim_tui.sgr import compact
-from dhsim_tui.widgets.cartesian_panel import CartesianPanel
-from dhsim_tui.widgets.joint_panel import JointRow, slider
-from dhsim_tui.widgets.pose_panel import PosePanel, health_text
+from dhsim_tui.terminal.sgr import compact
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel
+from dhsim_tui.tui.widgets.joint_panel import JointRow, slider
+from dhsim_tui.tui.widgets.pose_panel import PosePanel, health_text
 from tests.pilot_helpers import until
 
 COLUMNS, ROWS = 24, 8

@@ -6,12 +6,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
-from dhsim_tui.core.ik import rotation_error
+from dhsim_tui.core.ik.numerical import rotation_error
 from dhsim_tui.render.picture import ROLE_INDEX
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.widgets.pose_panel import PosePanel
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.widgets.pose_panel import PosePanel
 
 GOOD = (-20.0, 50.0, -170.0, 10.0, 40.0, 0.0)  # a Puma pose with room to move
 
@@ -19,7 +19,7 @@ GOOD = (-20.0, 50.0, -170.0, 10.0, 40.0, 0.0)  # a Puma pose with room to move
 def app_at(q=GOOD, animate=False, robot=None, path=None) -> DhsimApp:
     if robot is None:
         robot, path = load_robot("puma560")
-    from dhsim_tui.core.editing import set_pose
+    from dhsim_tui.core.model.editing import set_pose
 
     robot = set_pose(robot, "start", q)
     return DhsimApp(robot, path, animate=animate)
@@ -151,7 +151,9 @@ async def test_save_pose_on_a_bundled_robot_keeps_it_in_memory():
 
 
 async def test_home_moves_smoothly_and_arrives(monkeypatch):
-    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 2.0)  # slow enough for a busy machine
+    monkeypatch.setattr(
+        "dhsim_tui.tui.screens.motion.DURATION", 2.0
+    )  # slow enough for a busy machine
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")
@@ -169,7 +171,7 @@ async def test_home_moves_smoothly_and_arrives(monkeypatch):
 
 
 async def test_escape_interrupts_a_move_and_m_turns_motion_off(monkeypatch):
-    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 20.0)  # still moving when stopped
+    monkeypatch.setattr("dhsim_tui.tui.screens.motion.DURATION", 20.0)  # still moving when stopped
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")

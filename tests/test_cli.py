@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 from pty_screen import PtyScreen, dhsim_command
 
-from dhsim_tui.cli import main
+from dhsim_tui.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[1]
 ROBOTS_DIR = ROOT / "robots"
@@ -381,7 +381,7 @@ def test_subprocess_bad_inputs_exit_2_without_traceback(tmp_path):
     script = textwrap.dedent(
         f"""
         import contextlib, io, json, sys
-        from dhsim_tui.cli import main
+        from dhsim_tui.cli.main import main
         results = []
         for argv in {commands!r}:
             err = io.StringIO()
@@ -421,7 +421,7 @@ def test_scripting_commands_do_not_import_ui_libraries():
     script = textwrap.dedent(
         f"""
         import contextlib, io, sys
-        from dhsim_tui.cli import main
+        from dhsim_tui.cli.main import main
         for argv in (
             ["fk", "puma560", "--q", "{PAPER_Q}"],
             ["fk", "puma560", "--pose", "qr", "--json"],
@@ -537,7 +537,7 @@ def test_no_terminal_check_comes_before_loading_textual():
     script = textwrap.dedent(
         """
         import contextlib, io, sys
-        from dhsim_tui.cli import main
+        from dhsim_tui.cli.main import main
         err = io.StringIO()
         with contextlib.redirect_stderr(err):
             codes = [main(argv) for argv in ([], ["edit", "stanford"], ["new", "arm"])]

@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 import yourdfpy
 
-from dhsim_tui.cli import main
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.export import export_text
-from dhsim_tui.core.library import bundled_names, bundled_path, load_robot
-from dhsim_tui.core.robotfile import load
+from dhsim_tui.cli.main import main
+from dhsim_tui.core.files.library import bundled_names, bundled_path, load_robot
+from dhsim_tui.core.files.robotfile import load
+from dhsim_tui.core.interop.export import export_text
+from dhsim_tui.core.model.errors import DhsimError
 
 URDFS = Path(__file__).resolve().parent / "urdfs"
 
@@ -231,7 +231,7 @@ def test_a_urdf_given_as_a_robot_names_the_import_command_that_then_works(
     code, out, err = run(capsys, command, str(urdf), *extra)
     if command == "edit":  # no terminal here: the simulator says so before loading
         assert code == 2 and "interactive terminal" in err
-        from dhsim_tui.cli import _open
+        from dhsim_tui.cli.main import _open
 
         with pytest.raises(DhsimError) as caught:
             _open(str(urdf))  # what it loads the robot with, in a terminal

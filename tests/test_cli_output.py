@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 from pty_screen import dhsim_command
 
-from dhsim_tui.cli import main
-from dhsim_tui.core.text import SHOWN_CHARS, counted, shortened
+from dhsim_tui.cli.main import main
+from dhsim_tui.core.model.text import SHOWN_CHARS, counted, shortened
 
 URDFS = Path(__file__).resolve().parent / "urdfs"
 ONE_JOINT = 'name = "{name}"\n[[joints]]\ntheta = 0.0\nd = 0.0\na = 100.0\nalpha = 0.0\n'

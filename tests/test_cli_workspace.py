@@ -8,11 +8,11 @@ import json
 
 import pytest
 
-from dhsim_tui import cli
-from dhsim_tui.cli import UsageError, _Parser
-from dhsim_tui.cli_workspace import format_workspace, subparsers
+from dhsim_tui.cli import main as cli
+from dhsim_tui.cli.main import UsageError, _Parser
+from dhsim_tui.cli.workspace import format_workspace, subparsers
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.workspace import arm_reach, reach, sample_summary
+from dhsim_tui.core.analysis.workspace import arm_reach, reach, sample_summary
 
 
 def run(argv: list[str], capsys) -> tuple[int, str, str]:

@@ -9,13 +9,13 @@ import sys
 
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.pose_panel import PosePanel
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.pose_panel import PosePanel
 
 
 def make_app(name: str = "puma560", renderer: str = "plotext", animate: bool = False) -> DhsimApp:

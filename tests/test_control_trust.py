@@ -11,15 +11,15 @@ import pytest
 from rich.cells import cell_len
 from textual import events
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import Joint, Robot, load_robot, save
-from dhsim_tui.core.editing import set_pose
-from dhsim_tui.core.kinematics import read_out
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import short_path
-from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.value_entry import ValueEntry
-from dhsim_tui.widgets.pose_panel import PosePanel
+from dhsim_tui.core.model.editing import set_pose
+from dhsim_tui.core.model.kinematics import read_out
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import short_path
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
+from dhsim_tui.tui.widgets.pose_panel import PosePanel
 
 SIZE = (80, 24)
 
@@ -81,7 +81,7 @@ async def go_start(pilot) -> None:
 def slow_motion(monkeypatch):
     """Moves take 20 s, so a loaded test machine can't finish one before the
     keys under test arrive."""
-    monkeypatch.setattr("dhsim_tui.screens.motion.DURATION", 20.0)
+    monkeypatch.setattr("dhsim_tui.tui.screens.motion.DURATION", 20.0)
 
 
 async def th1_to_90_then(pilot, *keys: str) -> None:

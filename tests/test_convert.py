@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from dhsim_tui.core.convert import convert, rpy_of
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.library import bundled_names, load_robot
-from dhsim_tui.core.model import Tool
-from dhsim_tui.core.orientation import rpy_matrix
-from dhsim_tui.core.units import min_length
+from dhsim_tui.core.files.library import bundled_names, load_robot
+from dhsim_tui.core.interop.convert import convert, rpy_of
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.orientation import rpy_matrix
+from dhsim_tui.core.model.robot import Tool
+from dhsim_tui.core.model.units import min_length
 from tests.robot_strategies import random_q, reference_pose, robots
 
 SETTINGS = settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])

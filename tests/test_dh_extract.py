@@ -1,4 +1,4 @@
-"""D-H parameters from joint axes (dhsim_tui.core.dh_extract), checked against an
+"""D-H parameters from joint axes (dhsim_tui.core.interop.dh_extract), checked against an
 independent product-of-exponentials FK and a separate D-H matrix product."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core.dh_extract import DHChain, DHRow, convert, extract
-from dhsim_tui.core.errors import DhsimError
+from dhsim_tui.core.interop.dh_extract import DHChain, DHRow, convert, extract
+from dhsim_tui.core.model.errors import DhsimError
 
 DEG = math.pi / 180.0
 TOL = 1e-9

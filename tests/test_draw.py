@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from conftest import reference_frames
 
-from dhsim_tui.app import DhsimApp
-from dhsim_tui.cli import main
+from dhsim_tui.cli.main import main
 from dhsim_tui.core import load_robot
-from dhsim_tui.screens.palette import SAVE_PICTURE, DhsimPalette
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.palette import SAVE_PICTURE, DhsimPalette
 
 SVG = "{http://www.w3.org/2000/svg}"
 Q = (10.0, 45.0, -45.0, 20.0, 30.0, 40.0)
@@ -145,7 +145,7 @@ def test_draw_needs_no_terminal_and_no_textual(tmp_path):
     import sys
 
     code = (
-        "import sys; from dhsim_tui.cli import main; "
+        "import sys; from dhsim_tui.cli.main import main; "
         f"status = main(['draw', 'puma560', '-o', {str(tmp_path / 'p.svg')!r}]); "
         "assert 'textual' not in sys.modules, 'textual loaded'; sys.exit(status)"
     )

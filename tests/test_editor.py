@@ -6,14 +6,14 @@ from pathlib import Path
 
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import dumps, load, load_robot, loads, save
-from dhsim_tui.core.editing import new_robot
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Choice, Confirm, SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.open_robot import OpenRobot
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.core.model.editing import new_robot
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Choice, Confirm, SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.open_robot import OpenRobot
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 from tests.pilot_helpers import showing
 
 

@@ -6,15 +6,15 @@ from __future__ import annotations
 import pytest
 from textual.command import CommandList, CommandPalette
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.export import export_text
-from dhsim_tui.core.formats import EXPORT_FORMATS
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Choice, Confirm
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_ROWS
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.core.files.formats import EXPORT_FORMATS
+from dhsim_tui.core.interop.export import export_text
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Choice, Confirm
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_ROWS
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 from tests.pilot_helpers import showing, until
 
 pytestmark = pytest.mark.usefixtures("in_tmp")

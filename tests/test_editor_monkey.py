@@ -12,9 +12,9 @@ import pytest
 from textual import events
 from textual.screen import ModalScreen
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import Robot, dumps, load_robot, loads
-from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.editor import EditorScreen
 
 KEYS = [
     "up",

@@ -15,16 +15,16 @@ from pilot_helpers import until as wait_until
 from ptyprocess import PtyProcess
 from textual.containers import Vertical
 
-from dhsim_tui.app import DhsimApp, crash_line
 from dhsim_tui.core import load, load_robot, save
-from dhsim_tui.core.editing import new_robot
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Confirm, SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.editor_table import JOINT_COLUMNS
-from dhsim_tui.screens.palette import DhsimPalette
-from dhsim_tui.screens.start import StartScreen
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.core.model.editing import new_robot
+from dhsim_tui.tui.app import DhsimApp, crash_line
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Confirm, SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.editor_table import JOINT_COLUMNS
+from dhsim_tui.tui.screens.palette import DhsimPalette
+from dhsim_tui.tui.screens.start import StartScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
@@ -149,9 +149,9 @@ def test_a_real_crash_shows_one_line_not_textuals_traceback(in_tmp):
     script = in_tmp / "crash.py"
     script.write_text(
         "import sys\n"
-        "from dhsim_tui.app import run_app\n"
+        "from dhsim_tui.tui.app import run_app\n"
         "from dhsim_tui.core import load_robot\n"
-        "from dhsim_tui.screens.control import ControlScreen\n"
+        "from dhsim_tui.tui.screens.control import ControlScreen\n"
         "def boom(self):\n"
         "    raise RuntimeError('a bug')\n"
         "ControlScreen.action_help = boom\n"
@@ -181,7 +181,7 @@ def test_a_real_crash_shows_one_line_not_textuals_traceback(in_tmp):
 async def test_long_numbers_scroll_the_table_sideways_and_keep_the_number_in_view(in_tmp):
     """Imported limits like -160.428182637 pushed the max column off an 80x24
     screen: the table scrolls sideways, and "#" stays on the left."""
-    from dhsim_tui.core.editing import set_joint_field
+    from dhsim_tui.core.model.editing import set_joint_field
 
     robot = set_joint_field(new_robot("long", 3), 0, "min", -160.428182637)
     robot = set_joint_field(robot, 0, "max", 171.123456789)

@@ -16,9 +16,9 @@ from textual import events, work
 from textual.app import App
 from textual.containers import Vertical
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load, load_robot, save
-from dhsim_tui.core.editing import (
+from dhsim_tui.core.files.robotfile import read_stamp
+from dhsim_tui.core.model.editing import (
     delete_joint,
     insert_joint,
     move_joint,
@@ -28,16 +28,16 @@ from dhsim_tui.core.editing import (
     set_pose,
     set_units,
 )
-from dhsim_tui.core.robotfile import read_stamp
 from dhsim_tui.scene import VIEWS, build_wireframe, project
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Choice, FileChanged, ReadOnly, SaveGuard
-from dhsim_tui.screens.editor import QUIT_HINT, EditorScreen
-from dhsim_tui.screens.editor_changes import describe_change
-from dhsim_tui.screens.editor_table import joint_labels, number
-from dhsim_tui.screens.open_robot import OpenRobot
-from dhsim_tui.screens.save_flow import SaveResult, save_flow
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.flows.save import SaveResult, save_flow
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Choice, FileChanged, ReadOnly, SaveGuard
+from dhsim_tui.tui.screens.editor import QUIT_HINT, EditorScreen
+from dhsim_tui.tui.screens.editor_changes import describe_change
+from dhsim_tui.tui.screens.editor_table import joint_labels, number
+from dhsim_tui.tui.screens.open_robot import OpenRobot
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 BOX = "│╭╮╰╯─┃━▎▊▔▁"
 

@@ -1,4 +1,4 @@
-"""Exports (dhsim_tui.core.export): URDF checked against yourdfpy, CSV and JSON
+"""Exports (dhsim_tui.core.interop.export): URDF checked against yourdfpy, CSV and JSON
 read back independently, and the atomic, careful write.
 
 The URDF is loaded by yourdfpy, an independent URDF implementation: with the
@@ -25,20 +25,20 @@ import yourdfpy
 from hypothesis import HealthCheck, given, reject, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.export import (
+from dhsim_tui.core.files.formats import EXPORT_FORMATS, EXPORT_SUFFIXES
+from dhsim_tui.core.files.library import bundled_names, load_robot
+from dhsim_tui.core.interop.export import (
     export_text,
     to_csv,
     to_json,
     to_urdf,
     write_export,
 )
-from dhsim_tui.core.formats import EXPORT_FORMATS, EXPORT_SUFFIXES
-from dhsim_tui.core.library import bundled_names, load_robot
-from dhsim_tui.core.model import AXES, UNITS, Joint, Robot, Tool
-from dhsim_tui.core.orientation import rpy_angles as rpy_radians
-from dhsim_tui.core.text import control_character
-from dhsim_tui.core.validation import perpendicular_axes
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.orientation import rpy_angles as rpy_radians
+from dhsim_tui.core.model.robot import AXES, UNITS, Joint, Robot, Tool
+from dhsim_tui.core.model.text import control_character
+from dhsim_tui.core.model.validation import perpendicular_axes
 
 BUNDLED = bundled_names()
 #: agreement in metres, per metre of the arm's size (and at least this)

@@ -7,7 +7,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import bundled_names, load_robot
 from dhsim_tui.render.picture import NO_ROLE, ROLE_INDEX
 from dhsim_tui.scene import build_wireframe, project
@@ -16,8 +15,9 @@ from dhsim_tui.scene.framing import fitted
 from dhsim_tui.scene.oblique import Orbit, project_oblique
 from dhsim_tui.scene.projection import VIEWS, limits_at
 from dhsim_tui.scene.raster import rasterize
-from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 
 def make_app(name: str = "puma560") -> DhsimApp:

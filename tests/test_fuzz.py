@@ -12,9 +12,9 @@ import tomli_w
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core.errors import RobotFileError
-from dhsim_tui.core.model import AXES, CONVENTIONS, MIN_LENGTH_MM, UNITS, Joint, Robot, Tool
-from dhsim_tui.core.robotfile import dumps, load, loads, robot_to_dict, save
+from dhsim_tui.core.files.robotfile import dumps, load, loads, robot_to_dict, save
+from dhsim_tui.core.model.errors import RobotFileError
+from dhsim_tui.core.model.robot import AXES, CONVENTIONS, MIN_LENGTH_MM, UNITS, Joint, Robot, Tool
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
 BUNDLED_FILES = sorted(ROBOTS_DIR.glob("*.toml"))
@@ -77,7 +77,7 @@ def assert_valid(robot: Robot) -> None:
 
 def _steers_terminal(char: str) -> bool:
     """C0, DEL, C1, bidi overrides and isolates, zero-width marks, surrogates
-    (written out here, independently of dhsim_tui.core.text)."""
+    (written out here, independently of dhsim_tui.core.model.text)."""
     code = ord(char)
     return (
         code < 0x20

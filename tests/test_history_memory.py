@@ -10,9 +10,9 @@ import tracemalloc
 import numpy as np
 
 from dhsim_tui.core import bundled_names, load_robot
-from dhsim_tui.core.editing import History, Robot, new_robot, set_joint_field
-from dhsim_tui.core.jacobian import controllable_rows, dexterity
-from dhsim_tui.core.kinematics import COMPILE_AFTER, _compile, _stepwise
+from dhsim_tui.core.analysis.jacobian import controllable_rows, dexterity
+from dhsim_tui.core.model.editing import History, Robot, new_robot, set_joint_field
+from dhsim_tui.core.model.kinematics import COMPILE_AFTER, _compile, _stepwise
 
 EDITS = 3000
 MEASURED = 300

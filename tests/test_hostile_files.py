@@ -24,10 +24,9 @@ import tomli_w
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.cli import _open
-from dhsim_tui.core import robotfile
-from dhsim_tui.core.errors import RobotFileError
-from dhsim_tui.core.robotfile import (
+from dhsim_tui.cli.main import _open
+from dhsim_tui.core.files import robotfile
+from dhsim_tui.core.files.robotfile import (
     MAX_KEY_PARTS,
     MAX_LINE_CHARS,
     _hostile,
@@ -37,6 +36,7 @@ from dhsim_tui.core.robotfile import (
     save,
     tomllib,  # tomli on Python 3.10
 )
+from dhsim_tui.core.model.errors import RobotFileError
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
 BUNDLED_FILES = sorted(ROBOTS_DIR.glob("*.toml"))
@@ -64,9 +64,9 @@ MEASURE = textwrap.dedent(
     """
     import contextlib, io, json, resource, sys, time
     from pathlib import Path
-    from dhsim_tui.cli import main
-    from dhsim_tui.core.robotfile import load_with_stamp, save, RobotFileError
-    from dhsim_tui.core.library import load_robot
+    from dhsim_tui.cli.main import main
+    from dhsim_tui.core.files.robotfile import load_with_stamp, save, RobotFileError
+    from dhsim_tui.core.files.library import load_robot
 
     def rss():
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # KiB on Linux
@@ -223,8 +223,8 @@ def load_text(text: str):
 
 def test_the_longest_lines_dhsim_itself_writes_fit_well_within_the_bound():
     # 32 joints, a pose of 32 values each written in full, and the longest name
-    from dhsim_tui.core.model import Joint, Robot
-    from dhsim_tui.core.validation import MAX_NAME_CHARS
+    from dhsim_tui.core.model.robot import Joint, Robot
+    from dhsim_tui.core.model.validation import MAX_NAME_CHARS
 
     joints = tuple(Joint(min=-179.99999999999997, max=179.99999999999997) for _ in range(32))
     values = tuple(-123.45678901234567 for _ in range(32))

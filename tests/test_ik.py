@@ -9,11 +9,11 @@ import pytest
 from conftest import random_q
 
 from dhsim_tui.core import Joint, Robot, load_robot, reach
-from dhsim_tui.core.ik import rotation_error, solve
-from dhsim_tui.core.jacobian import controllable_rows, dexterity, jacobian, task_rank
-from dhsim_tui.core.jog import cartesian_move, move_pose
-from dhsim_tui.core.motion import interpolate, quintic
-from dhsim_tui.core.orientation import rotx, rpy_matrix
+from dhsim_tui.core.analysis.jacobian import controllable_rows, dexterity, jacobian, task_rank
+from dhsim_tui.core.ik.numerical import rotation_error, solve
+from dhsim_tui.core.model.orientation import rotx, rpy_matrix
+from dhsim_tui.core.motion.jog import cartesian_move, move_pose
+from dhsim_tui.core.motion.smooth import interpolate, quintic
 
 
 def test_jacobian_matches_finite_differences(bundled, rng):

@@ -21,17 +21,17 @@ import numpy as np
 import pytest
 from conftest import random_q, reference_frames
 
-from dhsim_tui.cli import main
+from dhsim_tui.cli.main import main
 from dhsim_tui.core import load_robot, reach
-from dhsim_tui.core.convert import convert
-from dhsim_tui.core.ik_all import Solutions, all_solutions
-from dhsim_tui.core.ik_analytic import (
+from dhsim_tui.core.ik.analytic import (
     SPHERICAL_MEETING,
     SPHERICAL_PARALLEL,
     THREE_PARALLEL,
     detect,
 )
-from dhsim_tui.core.model import Tool
+from dhsim_tui.core.ik.solutions import Solutions, all_solutions
+from dhsim_tui.core.interop.convert import convert
+from dhsim_tui.core.model.robot import Tool
 
 ANALYTIC = {
     "puma560": SPHERICAL_PARALLEL,

@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.ik_all import all_solutions
-from dhsim_tui.core.ik_analytic import detect, solve
+from dhsim_tui.core.ik.analytic import detect, solve
+from dhsim_tui.core.ik.solutions import all_solutions
 
 PAIRS = json.loads((Path(__file__).parent / "data" / "rtb_puma560_configs.json").read_text())
 WORDS = {

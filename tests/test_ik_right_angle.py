@@ -1,4 +1,4 @@
-"""The closed form in the arm's fitted frames (dhsim_tui/core/ik_right_angle_wrist.py)
+"""The closed form in the arm's fitted frames (dhsim_tui/core/ik/right_angle_wrist.py)
 against the general spherical-wrist form (ik_wrist) and the textbook FK.
 
 The two are separate derivations: the general one works with screw axes in
@@ -20,9 +20,9 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from dhsim_tui.core import load_robot, reach
-from dhsim_tui.core.convert import convert
-from dhsim_tui.core.ik_analytic import SPHERICAL_PARALLEL, detect, solve
-from dhsim_tui.core.model import AXES, Joint, Robot, Tool
+from dhsim_tui.core.ik.analytic import SPHERICAL_PARALLEL, detect, solve
+from dhsim_tui.core.interop.convert import convert
+from dhsim_tui.core.model.robot import AXES, Joint, Robot, Tool
 from tests.robot_strategies import angle_triples, reference_pose, triples
 
 ROBOTS = ("puma560", "puma560_modified", "irb140")

@@ -12,9 +12,9 @@ import pytest
 from conftest import reference_frames
 
 from dhsim_tui.core import load_robot, reach
-from dhsim_tui.core.ik import POSITION_TOL, rotation_error, solve
+from dhsim_tui.core.ik.numerical import POSITION_TOL, rotation_error, solve
 
-#: as dhsim_tui.cli_kinematics.IK_RESTARTS
+#: as dhsim_tui.cli.kinematics.IK_RESTARTS
 RESTARTS = 30
 TARGETS = 500
 ARMS = ["puma560", "puma560_modified", "stanford", "irb140", "ur5", "panda"]

@@ -17,11 +17,11 @@ import pytest
 import yourdfpy
 from hypothesis import HealthCheck, given, settings
 
-from dhsim_tui.core.errors import DhsimError, TipNeeded
-from dhsim_tui.core.export import export_text
-from dhsim_tui.core.importer import from_csv, from_urdf, import_file
-from dhsim_tui.core.library import bundled_names, load_robot
-from dhsim_tui.core.model import UNITS, Joint, Robot
+from dhsim_tui.core.files.library import bundled_names, load_robot
+from dhsim_tui.core.interop.export import export_text
+from dhsim_tui.core.interop.importer import from_csv, from_urdf, import_file
+from dhsim_tui.core.model.errors import DhsimError, TipNeeded
+from dhsim_tui.core.model.robot import UNITS, Joint, Robot
 from tests.robot_strategies import reference_pose
 from tests.test_urdf import CASES as URDF_CASES
 from tests.test_urdf import random_trees

@@ -10,16 +10,16 @@ import pytest
 from textual.command import CommandList, CommandPalette
 from textual.widgets import OptionList
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load, load_robot
-from dhsim_tui.core.errors import DhsimError, TipNeeded
-from dhsim_tui.core.export import export_text
-from dhsim_tui.core.importer import import_file
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Choice, SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.open_robot import ImportNotes, OpenRobot
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.core.interop.export import export_text
+from dhsim_tui.core.interop.importer import import_file
+from dhsim_tui.core.model.errors import DhsimError, TipNeeded
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Choice, SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.open_robot import ImportNotes, OpenRobot
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 from tests.pilot_helpers import showing, until
 
 pytestmark = pytest.mark.usefixtures("in_tmp")

@@ -19,10 +19,10 @@ from pathlib import Path
 
 import pytest
 
-from dhsim_tui.core.csv_import import MAX_CSV_BYTES, MAX_POSES
-from dhsim_tui.core.errors import DhsimError, TipNeeded
-from dhsim_tui.core.importer import from_csv, from_urdf, import_file
-from dhsim_tui.core.urdf import MAX_URDF_BYTES, MAX_URDF_LINKS, MAX_URDF_NODES, read_chain
+from dhsim_tui.core.interop.csv_import import MAX_CSV_BYTES, MAX_POSES
+from dhsim_tui.core.interop.importer import from_csv, from_urdf, import_file
+from dhsim_tui.core.interop.urdf import MAX_URDF_BYTES, MAX_URDF_LINKS, MAX_URDF_NODES, read_chain
+from dhsim_tui.core.model.errors import DhsimError, TipNeeded
 
 ROOT = Path(__file__).resolve().parents[1]
 SECONDS = 2.0
@@ -32,8 +32,8 @@ SHORT = 400
 
 MEASURE = """
 import json, resource, sys, time
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.importer import import_file
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.interop.importer import import_file
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 start = time.perf_counter()
 try:

@@ -22,12 +22,12 @@ from hypothesis import given
 from hypothesis import strategies as st
 from pty_screen import dhsim_command
 
-import dhsim_tui.cli as cli
-import dhsim_tui.cli_kinematics as cli_kinematics
-from dhsim_tui.cli import main
+import dhsim_tui.cli.kinematics as cli_kinematics
+import dhsim_tui.cli.main as cli
+from dhsim_tui.cli.main import main
 from dhsim_tui.core import DhsimError, Joint, Robot, RobotFileError, Tool, load, load_robot, loads
-from dhsim_tui.core.library import describe
-from dhsim_tui.core.validation import fmt
+from dhsim_tui.core.files.library import describe
+from dhsim_tui.core.model.validation import fmt
 
 #: characters that steer a terminal: C0, ESC, DEL, C1 (CSI), bidi override, zero-width
 CONTROLS = ["\x1b", "\x07", "\x7f", "\x9b", "\u202e", "\u200b", "\u2066"]
@@ -393,7 +393,7 @@ def test_no_numpy_warning_with_tiny_or_huge_values(tmp_path):
     script = textwrap.dedent(
         f"""
         import contextlib, io, json
-        from dhsim_tui.cli import main
+        from dhsim_tui.cli.main import main
         results = []
         for argv in {commands!r}:
             err = io.StringIO()
@@ -435,7 +435,7 @@ def test_an_unexpected_error_is_one_line_and_status_1(capsys, monkeypatch):
 
 def test_an_unexpected_error_in_the_real_process_exits_1_without_traceback():
     script = (
-        "import sys, dhsim_tui.cli as c\n"
+        "import sys, dhsim_tui.cli.main as c\n"
         "c.describe = lambda robot: 1 / 0\n"
         "sys.exit(c.main(['list']))\n"
     )

@@ -15,8 +15,7 @@ from hypothesis import strategies as st
 from robot_strategies import robots
 
 from dhsim_tui.core import DhsimError, Joint, Robot, load_robot
-from dhsim_tui.core.ik import rotation_error
-from dhsim_tui.core.jacobian import (
+from dhsim_tui.core.analysis.jacobian import (
     COMPILE_AFTER,
     compile_jacobian,
     damped_solver,
@@ -28,6 +27,7 @@ from dhsim_tui.core.jacobian import (
     normalised,
     root_gram_det,
 )
+from dhsim_tui.core.ik.numerical import rotation_error
 
 
 def finite_difference_jacobian(robot: Robot, q) -> np.ndarray:

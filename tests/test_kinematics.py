@@ -10,15 +10,15 @@ import pytest
 from conftest import random_q, reference_frames
 
 from dhsim_tui.core import DhsimError, Joint, Robot, load_robot, reach, work_area
-from dhsim_tui.core.model import AXES
-from dhsim_tui.core.orientation import (
+from dhsim_tui.core.analysis.workspace import arm_reach
+from dhsim_tui.core.model.orientation import (
     base_rotation,
     oat_from_matrix,
     oat_matrix,
     rpy_from_matrix,
     rpy_matrix,
 )
-from dhsim_tui.core.workspace import arm_reach
+from dhsim_tui.core.model.robot import AXES
 
 # reference §5: joints (deg) -> exact X Y Z (mm), O A T (deg)
 PUMA_TABLE = [
@@ -223,7 +223,7 @@ def test_oat_reference_orientation():
 
 
 def test_oat_is_zyz_euler(rng):
-    from dhsim_tui.core.orientation import roty, rotz
+    from dhsim_tui.core.model.orientation import roty, rotz
 
     for o, a, t in rng.uniform(-180, 180, size=(50, 3)):
         assert np.allclose(oat_matrix(o, a, t), rotz(o - 90) @ roty(a + 90) @ rotz(t))

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import ast
+import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -87,6 +89,24 @@ def _is_type_checking(node: ast.If) -> bool:
     )
 
 
+#: the core's own ``__init__``, which re-exports the names most callers need
+FACADE = "(core facade)"
+
+
+def _core_name(module: str, alias: str | None = None) -> str:
+    """The core module an import loads, relative to ``dhsim_tui.core``
+    (``ik.analytic``), or "" when it is not in the core. ``from P import m``
+    names the submodule ``P.m`` when there is one, else the package ``P``."""
+    if module != "dhsim_tui.core" and not module.startswith("dhsim_tui.core."):
+        return ""
+    tail = module.removeprefix("dhsim_tui.core").removeprefix(".")
+    if alias is not None:
+        dotted = f"{tail}.{alias}" if tail else alias
+        if (CORE / (dotted.replace(".", "/") + ".py")).exists():
+            return dotted
+    return tail or FACADE
+
+
 def _runtime_core_imports(tree: ast.Module) -> set[str]:
     """The core modules a module imports when it runs (not under TYPE_CHECKING)."""
     names: set[str] = set()
@@ -103,32 +123,31 @@ def _runtime_core_imports(tree: ast.Module) -> set[str]:
         if isinstance(node, ast.ExceptHandler):
             pending.extend(node.body)
         elif isinstance(node, ast.ImportFrom) and node.module:
-            if node.module == "dhsim_tui.core":
-                names.update(alias.name for alias in node.names)
-            elif node.module.startswith("dhsim_tui.core."):
-                names.add(node.module.split(".")[2])
+            names.update(_core_name(node.module, alias.name) for alias in node.names)
         elif isinstance(node, ast.Import):
-            for alias in node.names:
-                if alias.name.startswith("dhsim_tui.core."):
-                    names.add(alias.name.split(".")[2])
+            names.update(_core_name(alias.name) for alias in node.names)
     return names
 
 
 def _core_modules() -> dict[str, ast.Module]:
-    return {
-        path.stem: ast.parse(path.read_text(encoding="utf-8"), str(path))
-        for path in sorted(CORE.glob("*.py"))
-        if path.name != "__init__.py"
-    }
+    """Every core module by its dotted name below the core (``model.units``);
+    a subpackage's ``__init__`` by the subpackage's name (``ik``)."""
+    modules = {}
+    for path in sorted(CORE.rglob("*.py")):
+        parts = path.relative_to(CORE).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        modules[name or FACADE] = ast.parse(path.read_text(encoding="utf-8"), str(path))
+    return modules
 
 
 def test_core_modules_import_at_the_top():
     offenders, fixed = [], []
-    for path in sorted(CORE.glob("*.py")):
+    for path in sorted(CORE.rglob("*.py")):
+        name = str(path.relative_to(CORE))
         tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
-        found = [f"{path.name}:{line} in {func}()" for func, line in _function_imports(tree)]
-        if path.name in FUNCTION_IMPORTS_TO_FIX:
-            fixed += [] if found else [path.name]
+        found = [f"{name}:{line} in {func}()" for func, line in _function_imports(tree)]
+        if name in FUNCTION_IMPORTS_TO_FIX:
+            fixed += [] if found else [name]
         else:
             offenders += found
     assert not offenders, "imports inside functions (dodging a cycle?): " + ", ".join(offenders)
@@ -143,9 +162,11 @@ def test_function_import_detector_finds_one():
 
 def test_core_import_graph_has_no_cycle():
     modules = _core_modules()
+    assert {"model.units", "ik.numerical", "files.robotfile", "interop.urdf"} <= set(modules)
     graph = {name: _runtime_core_imports(tree) & set(modules) for name, tree in modules.items()}
-    assert "model" not in graph["validation"]  # validation needs only the leaf units module
-    assert graph["units"] == set()
+    # validation needs only the leaf units module
+    assert "model.robot" not in graph["model.validation"]
+    assert graph["model.units"] == set()
     # depth-first search for a back edge
     state: dict[str, str] = {}
 
@@ -168,18 +189,69 @@ def test_the_simulator_starts_without_the_importers_exporters_and_every_solution
     """``dhsim`` loads the CLI and the app; the URDF/CSV readers, the exporters,
     the D-H conversion and every-solution IK load when a command or key first
     needs them (each is tested where it is used)."""
-    script = "import dhsim_tui.cli, dhsim_tui.app\nimport sys\nprint(' '.join(sorted(sys.modules)))"
+    script = (
+        "import dhsim_tui.cli.main, dhsim_tui.tui.app\nimport sys\n"
+        "print(' '.join(sorted(sys.modules)))"
+    )
     out = subprocess.run(
         [sys.executable, "-c", script], capture_output=True, text=True, check=True
     ).stdout.split()
     later = {
-        "dhsim_tui.core.importer",
-        "dhsim_tui.core.urdf",
-        "dhsim_tui.core.csv_import",
-        "dhsim_tui.core.export",
-        "dhsim_tui.core.convert",
-        "dhsim_tui.core.ik_all",
+        "dhsim_tui.core.interop.importer",
+        "dhsim_tui.core.interop.urdf",
+        "dhsim_tui.core.interop.csv_import",
+        "dhsim_tui.core.interop.export",
+        "dhsim_tui.core.interop.convert",
+        "dhsim_tui.core.ik.solutions",
         "xml.etree.ElementTree",
         "csv",
     }
     assert not later & set(out), later & set(out)
+
+
+# -- the layers as import-linter contracts (pyproject.toml) ------------------------------
+
+ROOT = PACKAGE.parent
+
+
+def _lint_imports(cwd: Path, package_parent: Path) -> subprocess.CompletedProcess[str]:
+    lint = Path(sys.executable).with_name("lint-imports")
+    env = {**os.environ, "PYTHONPATH": str(package_parent), "COLUMNS": "250"}
+    return subprocess.run(
+        [str(lint), "--no-cache", "--no-logo", str(cwd / "pyproject.toml")],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+
+
+def test_the_import_linter_contracts_are_kept():
+    result = _lint_imports(ROOT, ROOT)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "5 kept, 0 broken" in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("module", "line", "contract"),
+    [
+        ("core/model/units.py", "import dhsim_tui.scene", "Each layer imports only"),
+        ("core/model/units.py", "import dhsim_tui.core.ik.numerical", "Each core subpackage"),
+        ("core/files/atomicfile.py", "import dhsim_tui.core.interop.urdf", "Each core subpackage"),
+        ("scene/clip.py", "import textual", "never import a UI library"),
+        ("render/ticks.py", "import rich", "render may use plotext"),
+        ("terminal/sgr.py", "import numpy", "knows nothing of robots"),
+    ],
+)
+def test_the_contracts_catch_an_import_against_the_layers(tmp_path, module, line, contract):
+    """The same contracts on a copy of the package with one bad import added."""
+    shutil.copytree(PACKAGE, tmp_path / "dhsim_tui", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    target = tmp_path / "dhsim_tui" / module
+    target.write_text(target.read_text(encoding="utf-8") + f"\n{line}  # noqa\n", encoding="utf-8")
+    result = _lint_imports(tmp_path, tmp_path)
+    assert result.returncode != 0, result.stdout
+    broken = [row for row in result.stdout.splitlines() if row.endswith(" BROKEN")]
+    # one bad import can break more than one contract (through what it pulls in)
+    assert any(contract in row for row in broken), result.stdout

@@ -7,9 +7,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core import editing, load_robot
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.merge import WHOLE, merge
+from dhsim_tui.core import load_robot
+from dhsim_tui.core.model import editing
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.merge import WHOLE, merge
 
 PUMA = load_robot("puma560")[0]
 

@@ -10,12 +10,12 @@ from pty_screen import PtyScreen
 from textual.coordinate import Coordinate
 from textual.events import MouseMove, MouseScrollDown, MouseScrollUp
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.jog import snapped
-from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.joint_panel import BAR_START, JointRow, bar_value
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.core.motion.jog import snapped
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.joint_panel import BAR_START, JointRow, bar_value
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 
 def make_app(start: str = "control") -> DhsimApp:

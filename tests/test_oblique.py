@@ -12,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dhsim_tui.core import Joint, Robot, bundled_names, load_robot
-from dhsim_tui.core.workspace import WorkArea
+from dhsim_tui.core.analysis.workspace import WorkArea
 from dhsim_tui.scene import build_wireframe
 from dhsim_tui.scene.oblique import (
     PICTURE_MARGIN,

@@ -16,11 +16,12 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from dhsim_tui.core import editing, robotfile
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.library import bundled_path, load_robot
-from dhsim_tui.core.model import Joint, Robot
-from dhsim_tui.core.workspace import work_area
+from dhsim_tui.core.analysis.workspace import work_area
+from dhsim_tui.core.files import robotfile
+from dhsim_tui.core.files.library import bundled_path, load_robot
+from dhsim_tui.core.model import editing
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.robot import Joint, Robot
 from dhsim_tui.scene.wireframe import build_wireframe
 from tests.robot_strategies import random_q, reference_frames, reference_pose, robots
 

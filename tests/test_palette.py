@@ -7,12 +7,12 @@ from dataclasses import replace
 import pytest
 from textual.command import CommandInput, CommandList, CommandPalette, SearchIcon
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.convert import convert
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.help import HelpScreen
+from dhsim_tui.core.interop.convert import convert
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.help import HelpScreen
 from tests.pilot_helpers import non_ascii_outside_views, showing, until
 
 pytestmark = pytest.mark.usefixtures("in_tmp")

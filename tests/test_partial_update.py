@@ -7,9 +7,9 @@ import pyte
 import textual
 from textual._compositor import ChopsUpdate, LayoutUpdate
 
-from dhsim_tui import partial_update
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
+from dhsim_tui.terminal import partial_update
+from dhsim_tui.tui.app import DhsimApp
 
 KEYS = (
     "right", "right", "down", "right_square_bracket", "right", "left", "4", "d", "w",

@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load, load_robot
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import FileChanged, SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import FileChanged, SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 POSE = (1.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 

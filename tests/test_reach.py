@@ -13,9 +13,9 @@ from hypothesis import given, settings
 from robot_strategies import robots
 
 from dhsim_tui.core import bundled_names, load_robot
-from dhsim_tui.core.convert import convert
-from dhsim_tui.core.library import describe
-from dhsim_tui.core.workspace import arm_reach, reach, sample_summary, work_area
+from dhsim_tui.core.analysis.workspace import arm_reach, reach, sample_summary, work_area
+from dhsim_tui.core.files.library import describe
+from dhsim_tui.core.interop.convert import convert
 
 
 def test_the_puma_reaches_as_far_as_its_straightened_arm_by_hand():

@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 
 from dhsim_tui.core import DhsimError, Joint, Robot, load_robot, reach
-from dhsim_tui.core.ik import ORIENTATION, POSITION, rotation_error, solve
-from dhsim_tui.core.ik_reasons import LIMIT, OUT_OF_REACH, SINGULAR, amount
-from dhsim_tui.core.jacobian import dexterity, jacobian
-from dhsim_tui.core.jog import cartesian_move, move_pose
-from dhsim_tui.core.orientation import rotx
+from dhsim_tui.core.analysis.jacobian import dexterity, jacobian
+from dhsim_tui.core.ik.numerical import ORIENTATION, POSITION, rotation_error, solve
+from dhsim_tui.core.ik.reasons import LIMIT, OUT_OF_REACH, SINGULAR, amount
+from dhsim_tui.core.model.orientation import rotx
+from dhsim_tui.core.motion.jog import cartesian_move, move_pose
 
 PUMA_WRIST_SINGULAR = (0.0, 45.0, -135.0, 0.0, 0.0, 0.0)  # theta5 = 0
 

@@ -14,10 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import RobotFileError, load, load_robot
-from dhsim_tui.core.editing import new_robot, set_name, set_pose, toggle_type
-from dhsim_tui.core.recovery import (
+from dhsim_tui.core.files.recovery import (
     NEW_ROBOT,
     discard_recovery,
     find_recovery,
@@ -27,9 +25,11 @@ from dhsim_tui.core.recovery import (
     source_key,
     write_recovery,
 )
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import Choice
-from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.core.model.editing import new_robot, set_name, set_pose, toggle_type
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import Choice
+from dhsim_tui.tui.screens.editor import EditorScreen
 
 
 @pytest.fixture

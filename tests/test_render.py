@@ -96,7 +96,7 @@ def test_ticks_are_numbered_in_the_robots_unit_at_their_place():
 @pytest.mark.parametrize("size", [(40, 14), (60, 22), (100, 30)])
 def test_a_robot_in_metres_gets_ticks_finer_than_a_metre(size):
     """A robot in metres was numbered at whole metres only (-2 ... 2)."""
-    from dhsim_tui.core.editing import set_units
+    from dhsim_tui.core.model.editing import set_units
 
     metres = set_units(load_robot("ur5")[0], "m")
     wire = build_wireframe(metres, metres.kinematics.frames(metres.home))

@@ -8,16 +8,16 @@ import stat
 
 import pytest
 
-from dhsim_tui.app import DhsimApp
-from dhsim_tui.cli import main
+from dhsim_tui.cli.main import main
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
-from dhsim_tui.core.editing import set_pose, set_units
-from dhsim_tui.core.jog import cartesian_move, cartesian_target
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.dialogs import SaveGuard
-from dhsim_tui.screens.editor import EditorScreen
-from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.value_entry import ValueEntry
+from dhsim_tui.core.model.editing import set_pose, set_units
+from dhsim_tui.core.motion.jog import cartesian_move, cartesian_target
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.dialogs import SaveGuard
+from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 BRACKETS = "arm [/] [b]x"
 

@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 import tomli_w
 
-from dhsim_tui.core.errors import DhsimError, RobotFileError
-from dhsim_tui.core.library import bundled_names, bundled_path
-from dhsim_tui.core.model import Joint, Robot, Tool
-from dhsim_tui.core.robotfile import dumps, load, loads, save, tomllib
+from dhsim_tui.core.files.library import bundled_names, bundled_path
+from dhsim_tui.core.files.robotfile import dumps, load, loads, save, tomllib
+from dhsim_tui.core.model.errors import DhsimError, RobotFileError
+from dhsim_tui.core.model.robot import Joint, Robot, Tool
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
 BUNDLED_STEMS = sorted(p.stem for p in ROBOTS_DIR.glob("*.toml"))
@@ -594,7 +594,7 @@ def test_a_good_robot_file_named_csv_still_loads(tmp_path):
 
 
 def test_a_name_or_pose_name_longer_than_the_bound_is_refused(tmp_path):
-    from dhsim_tui.core.validation import MAX_NAME_CHARS
+    from dhsim_tui.core.model.validation import MAX_NAME_CHARS
 
     def spread(text: str) -> str:  # a TOML string of short lines (line continuations)
         lines = [text[i : i + 80] for i in range(0, len(text), 80)]
@@ -617,7 +617,7 @@ def test_a_name_or_pose_name_longer_than_the_bound_is_refused(tmp_path):
 
 
 def test_a_long_key_or_value_from_the_file_is_quoted_shortened(tmp_path):
-    from dhsim_tui.core.text import SHOWN_CHARS
+    from dhsim_tui.core.model.text import SHOWN_CHARS
 
     key = "k" * 3000 + "END"
     message = rejection(write(tmp_path, f'name = "x"\n{key} = 1\n'))

@@ -22,10 +22,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core import editing
-from dhsim_tui.core import robotfile as robotfile_module
-from dhsim_tui.core.errors import DhsimError, RobotFileError
-from dhsim_tui.core.robotfile import (
+from dhsim_tui.core.files import robotfile as robotfile_module
+from dhsim_tui.core.files.robotfile import (
     FileChangedError,
     FileStamp,
     ReadOnlyError,
@@ -36,6 +34,8 @@ from dhsim_tui.core.robotfile import (
     read_stamp,
     save,
 )
+from dhsim_tui.core.model import editing
+from dhsim_tui.core.model.errors import DhsimError, RobotFileError
 
 ROBOTS_DIR = Path(__file__).resolve().parents[1] / "robots"
 BUNDLED_FILES = sorted(ROBOTS_DIR.glob("*.toml"))

@@ -78,8 +78,8 @@ def test_control_cartesian_mode(snap_compare):
 def _puma(**kwargs):
     from rich.color import ColorSystem
 
-    from dhsim_tui.app import DhsimApp
     from dhsim_tui.core import load_robot
+    from dhsim_tui.tui.app import DhsimApp
 
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, **kwargs)

@@ -17,8 +17,8 @@ import pytest
 from pty_screen import PtyScreen
 
 from dhsim_tui.core import load, load_robot
-from dhsim_tui.core.editing import toggle_type
-from dhsim_tui.core.recovery import write_recovery
+from dhsim_tui.core.files.recovery import write_recovery
+from dhsim_tui.core.model.editing import toggle_type
 
 pytestmark = pytest.mark.skipif(shutil.which("stty") is None, reason="needs a POSIX terminal")
 
@@ -168,7 +168,7 @@ def test_an_unexpected_error_exits_non_zero_and_keeps_the_changes(
     inject = tmp_path / "inject"
     inject.mkdir()
     (inject / "sitecustomize.py").write_text(
-        "from dhsim_tui.screens.editor import EditorScreen\n"
+        "from dhsim_tui.tui.screens.editor import EditorScreen\n"
         "def broken(self):\n"
         "    raise RuntimeError('injected fault')\n"
         "EditorScreen.action_help = broken\n"

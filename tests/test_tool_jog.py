@@ -6,16 +6,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.editing import set_pose
-from dhsim_tui.core.ik import rotation_error
-from dhsim_tui.core.jog import TOOL, WORLD, move_pose, row_name
-from dhsim_tui.core.orientation import rotx, roty, rotz
-from dhsim_tui.core.workspace import reach
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.palette import commands_for
-from dhsim_tui.widgets.cartesian_panel import CartesianPanel, cartesian_text
+from dhsim_tui.core.analysis.workspace import reach
+from dhsim_tui.core.ik.numerical import rotation_error
+from dhsim_tui.core.model.editing import set_pose
+from dhsim_tui.core.model.orientation import rotx, roty, rotz
+from dhsim_tui.core.motion.jog import TOOL, WORLD, move_pose, row_name
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.palette import commands_for
+from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel, cartesian_text
 
 GOOD = (-20.0, 50.0, -170.0, 10.0, 40.0, 0.0)  # a Puma pose with room to move
 

@@ -1,7 +1,7 @@
 """Keys typed ahead, as a slow link delivers them: a whole burst in one read.
 
 Textual runs a key's bindings when the key bubbles back to the app, behind the
-rest of the burst; without dhsim's one-key-at-a-time gate (dhsim_tui/typeahead.py)
+rest of the burst; without dhsim's one-key-at-a-time gate (dhsim_tui/terminal/typeahead.py)
 the name typed after ``P`` went to the control screen and was lost.
 """
 
@@ -12,11 +12,11 @@ from pathlib import Path
 
 from textual import events
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.robotfile import load, load_with_stamp
-from dhsim_tui.screens.control import ControlScreen
-from dhsim_tui.screens.editor import EditorScreen
+from dhsim_tui.core.files.robotfile import load, load_with_stamp
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.editor import EditorScreen
 from tests.pilot_helpers import until
 
 KEYS = {"enter": "\r", "ctrl+u": "\x15", "right": None, "escape": "\x1b"}

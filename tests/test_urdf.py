@@ -1,4 +1,4 @@
-"""Serial chains read from a URDF (dhsim_tui.core.urdf), checked against yourdfpy.
+"""Serial chains read from a URDF (dhsim_tui.core.interop.urdf), checked against yourdfpy.
 
 yourdfpy is an independent, well-kept URDF implementation: every ``fk`` here
 is compared with its scene graph (``update_cfg`` + ``get_transform``) to
@@ -23,8 +23,8 @@ import yourdfpy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.urdf import CONTINUOUS_LIMIT, UrdfChain, read_chain
+from dhsim_tui.core.interop.urdf import CONTINUOUS_LIMIT, UrdfChain, read_chain
+from dhsim_tui.core.model.errors import DhsimError
 
 URDFS = Path(__file__).resolve().parent / "urdfs"
 TOL = 1e-9

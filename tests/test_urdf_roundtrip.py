@@ -24,12 +24,12 @@ import pytest
 import yourdfpy
 from hypothesis import HealthCheck, given, settings
 
-from dhsim_tui.core.convert import convert
-from dhsim_tui.core.editing import set_units
-from dhsim_tui.core.export import export_text, to_json, write_export
-from dhsim_tui.core.importer import from_urdf, import_file
-from dhsim_tui.core.library import bundled_names, load_robot
-from dhsim_tui.core.model import Joint, Robot
+from dhsim_tui.core.files.library import bundled_names, load_robot
+from dhsim_tui.core.interop.convert import convert
+from dhsim_tui.core.interop.export import export_text, to_json, write_export
+from dhsim_tui.core.interop.importer import from_urdf, import_file
+from dhsim_tui.core.model.editing import set_units
+from dhsim_tui.core.model.robot import Joint, Robot
 from tests.test_export import robots
 from tests.test_import import check_against_yourdfpy
 

@@ -9,12 +9,12 @@ from rich.color import ColorSystem
 from rich.console import Console
 from rich.segment import Segment
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
 from dhsim_tui.render.picture import CELL_ROLES
-from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.view_style import role_styles
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.view_style import role_styles
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 
 def make_app(name: str = "puma560") -> DhsimApp:
@@ -214,7 +214,7 @@ async def test_the_editors_preview_shows_the_legend_only_when_it_fits(size):
 
 
 def test_a_theme_that_does_not_exist_gets_one_line(capsys):
-    from dhsim_tui.cli import main
+    from dhsim_tui.cli.main import main
 
     assert main(["--theme", "bogus"]) == 2
     err = capsys.readouterr().err

@@ -12,12 +12,8 @@ from rich.console import Console
 from rich.segment import Segment
 from rich.style import Style
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
-from dhsim_tui.core.errors import DhsimError
-from dhsim_tui.core.kinematics import robot_base
-from dhsim_tui.core.library import bundled_names
-from dhsim_tui.core.workspace import (
+from dhsim_tui.core.analysis.workspace import (
     MAX_SAMPLES,
     joint_samples,
     position_chunks,
@@ -26,6 +22,9 @@ from dhsim_tui.core.workspace import (
     sample_summary,
     workspace_summary,
 )
+from dhsim_tui.core.files.library import bundled_names
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.kinematics import robot_base
 from dhsim_tui.render.cloud import ASCII_MARK, MONO_MARK, CloudLayer, sparse_cells
 from dhsim_tui.render.picture import CELL_ROLES, NO_ROLE, ROLE_INDEX, Framing, Look, Picture
 from dhsim_tui.render.plotext_picture import PlotextPainter, bare_picture
@@ -33,9 +32,10 @@ from dhsim_tui.scene import build_wireframe, project
 from dhsim_tui.scene.cloud import cloud_dots, project_cloud
 from dhsim_tui.scene.oblique import Orbit, picture_coordinates, project_oblique
 from dhsim_tui.scene.projection import FRONT, ISO, SIDE, TOP, Polyline, ViewScene, per_dot_needed
-from dhsim_tui.widgets.arm_view import ArmView
-from dhsim_tui.widgets.view_style import role_styles
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.view_style import role_styles
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 from tests.conftest import reference_frames
 
 CLOUD = ROLE_INDEX["cloud"]

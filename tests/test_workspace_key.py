@@ -7,12 +7,13 @@ import threading
 
 import numpy as np
 
-from dhsim_tui.app import DhsimApp
-from dhsim_tui.core import load_robot, workspace
-from dhsim_tui.screens.control import CLOUD_POINTS, ControlScreen
-from dhsim_tui.screens.help import HelpScreen
-from dhsim_tui.screens.palette import commands_for
-from dhsim_tui.widgets.views_panel import ViewsPanel
+from dhsim_tui.core import load_robot
+from dhsim_tui.core.analysis import workspace
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import CLOUD_POINTS, ControlScreen
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.palette import commands_for
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 from tests.pilot_helpers import until
 
 

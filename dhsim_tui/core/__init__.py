@@ -2,12 +2,12 @@
 robot files. It depends on numpy and the standard library only (and tomli-w
 for writing), never on textual, plotext or rich; a test proves it."""
 
-from dhsim_tui.core.errors import DhsimError, RobotFileError
-from dhsim_tui.core.kinematics import EndEffector, Kinematics, read_out
-from dhsim_tui.core.library import bundled_names, describe, load_robot, resolve
-from dhsim_tui.core.model import Joint, Robot, Tool
-from dhsim_tui.core.robotfile import dumps, load, loads, save
-from dhsim_tui.core.workspace import WorkArea, reach, work_area
+from dhsim_tui.core.analysis.workspace import WorkArea, reach, work_area
+from dhsim_tui.core.files.library import bundled_names, describe, load_robot, resolve
+from dhsim_tui.core.files.robotfile import dumps, load, loads, save
+from dhsim_tui.core.model.errors import DhsimError, RobotFileError
+from dhsim_tui.core.model.kinematics import EndEffector, Kinematics, read_out
+from dhsim_tui.core.model.robot import Joint, Robot, Tool
 
 __all__ = [
     "DhsimError",

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dhsim_tui.core.workspace import WorkArea
+from dhsim_tui.core.analysis.workspace import WorkArea
 from dhsim_tui.scene.oblique import Orbit, picture_coordinates
 from dhsim_tui.scene.projection import VIEWS, View
 from dhsim_tui.scene.raster import _BITS

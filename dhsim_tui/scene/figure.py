@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from dhsim_tui.core.model import Robot
+from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.scene.framing import Framing, fitted, work_area_framings
 from dhsim_tui.scene.oblique import Orbit, project_oblique
 from dhsim_tui.scene.projection import VIEWS, View, ViewScene, project

@@ -26,7 +26,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from dhsim_tui.core.workspace import WorkArea
+from dhsim_tui.core.analysis.workspace import WorkArea
 from dhsim_tui.scene.projection import ISO, Polyline, View, ViewScene, wire_lines
 from dhsim_tui.scene.wireframe import Wireframe
 

@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dhsim_tui.core.model import Robot
-from dhsim_tui.core.workspace import WorkArea, reach, work_area
+from dhsim_tui.core.analysis.workspace import WorkArea, reach, work_area
+from dhsim_tui.core.model.robot import Robot
 
 #: a frame's axes are this fraction of the robot's reach long: short enough
 #: that the links, not the frames, are what the eye follows

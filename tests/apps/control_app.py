@@ -2,8 +2,8 @@
 
 from rich.color import ColorSystem
 
-from dhsim_tui.app import DhsimApp
 from dhsim_tui.core import load_robot
+from dhsim_tui.tui.app import DhsimApp
 
 robot, path = load_robot("puma560")
 app = DhsimApp(robot, path, animate=False)  # moves land at once: deterministic

@@ -1,0 +1,385 @@
+"""The ``dhsim`` command: a thin shell over the core.
+
+``fk``, ``ik``, ``check`` and ``list`` never import textual (they are used in
+scripts and must start fast); only opening the simulator does, and only when
+stdin and stdout are a terminal. Every bad input ends as one line on stderr
+and exit status 2, never a traceback; an unexpected error as one line and
+exit status 1. Whatever the line quotes from the user or a file is passed
+through :func:`printable`, so no control character reaches the terminal.
+Output that cannot be written (a full disk, standard output closed) is one
+line and status 2 as well; a reader that stops early (``dhsim list | head
+-1``) is not an error. An option given twice is refused, not overridden.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import sys
+from collections.abc import Sequence
+
+import numpy as np
+
+from dhsim_tui import __version__
+from dhsim_tui.cli.draw import subparsers as draw_subparsers
+from dhsim_tui.cli.files import subparsers as files_subparsers
+from dhsim_tui.cli.kinematics import VALUE_OPTIONS
+from dhsim_tui.cli.kinematics import subparsers as kinematics_subparsers
+from dhsim_tui.cli.workspace import subparsers as workspace_subparsers
+from dhsim_tui.core.files.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
+from dhsim_tui.core.files.robotfile import load_with_stamp
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.text import printable
+from dhsim_tui.terminal.charset import original_environ, wants_ascii
+
+EXIT_USAGE = 2
+EXIT_INTERNAL = 1
+EXIT_INTERRUPTED = 130
+NEEDS_TERMINAL = (
+    "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
+    "fk, ik, check, list, import, export, convert, workspace and draw work without one"
+)
+
+
+class UsageError(Exception):
+    """A command line argparse could not accept."""
+
+
+class OutputError(Exception):
+    """Standard output cannot be written; the message says why."""
+
+
+class _StoreOnce(argparse._StoreAction):
+    """An option that takes a value refuses a second one: ``--q 1,2 --q 3,4``
+    would otherwise keep the last without a word."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        given = vars(namespace).setdefault("_options_given", set())
+        if option_string is not None and self.dest in given:
+            raise argparse.ArgumentError(self, "given more than once; give it once")
+        given.add(self.dest)
+        super().__call__(parser, namespace, values, option_string)
+
+
+class _Parser(argparse.ArgumentParser):
+    """Every dhsim parser: errors in one line, options with a value given once."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+
+    def error(self, message: str):  # one line, no usage dump
+        raise UsageError(f"{self.prog}: error: {message} (see '{self.prog} --help')")
+
+
+class _Output:
+    """``sys.stdout`` while a command runs: a write or flush that fails
+    (other than for a closed pipe) is an :class:`OutputError` saying why."""
+
+    def __init__(self, stream) -> None:
+        self.stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            return self.stream.write(text)
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            raise OutputError(_reason(exc)) from None
+
+    def flush(self) -> None:
+        try:
+            self.stream.flush()
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            raise OutputError(_reason(exc)) from None
+
+    def __getattr__(self, name: str):
+        return getattr(self.stream, name)
+
+
+def _reason(exc: BaseException) -> str:
+    """``no space left on device``: the system's words, as part of a sentence."""
+    text = getattr(exc, "strerror", None) or str(exc) or type(exc).__name__
+    return printable(text[:1].lower() + text[1:])
+
+
+def _glue_negative_values(argv: list[str]) -> list[str]:
+    """``--q -10,20`` -> ``--q=-10,20`` (argparse would take -10,20 for an option)."""
+    out: list[str] = []
+    skip = False
+    for i, arg in enumerate(argv):
+        if skip:
+            skip = False
+            continue
+        following = argv[i + 1] if i + 1 < len(argv) else ""
+        if arg in VALUE_OPTIONS and following[:1] == "-" and following[1:2] in "0123456789.":
+            out.append(f"{arg}={argv[i + 1]}")
+            skip = True
+        else:
+            out.append(arg)
+    return out
+
+
+def cmd_check(args: argparse.Namespace) -> int:
+    robot, path = load_robot(args.robot)
+    print(printable(f"ok  {describe(robot)}  ({path})"))
+    return 0
+
+
+def cmd_list(args: argparse.Namespace) -> int:
+    status = 0
+    for name in bundled_names():
+        try:
+            robot, _ = load_robot(name)
+        except DhsimError as exc:
+            print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
+            status = EXIT_USAGE
+            continue
+        print(printable(f"{name:<17} {describe(robot)}"))
+    return status
+
+
+def has_terminal() -> bool:
+    """Both stdin and stdout are a terminal (the simulator reads keys and draws)."""
+    for stream in (sys.stdin, sys.stdout):
+        try:
+            if stream is None or not os.isatty(stream.fileno()):
+                return False
+        except (AttributeError, OSError, ValueError):  # closed, or not a real file
+            return False
+    return True
+
+
+def _open(argument: str | None):
+    """The robot, its file and the stamp of the very bytes read (a save later
+    refuses to overwrite a change made on disk since then)."""
+    path = resolve(argument if argument is not None else DEFAULT_ROBOT)
+    robot, stamp = load_with_stamp(path)
+    return robot, path, stamp
+
+
+def ascii_screen(args: argparse.Namespace) -> bool:
+    """Whether the simulator draws in 7-bit ASCII: ``--ascii`` or ``--unicode``
+    if given, else the locale the process was started with and TERM.
+    In ASCII mode whatever is printed after the app ends is ASCII as well
+    (backslash escapes for what has no ASCII form)."""
+    ascii = wants_ascii(original_environ(), force=args.force_ascii)
+    if ascii:
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(AttributeError, ValueError, OSError):
+                stream.flush()
+                stream.reconfigure(encoding="ascii", errors="backslashreplace")  # type: ignore[union-attr]
+    return ascii
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    robot, path, stamp = _open(args.robot)  # a bad robot is reported before any UI starts
+    from dhsim_tui.tui.app import run_app  # textual loads only for the simulator
+
+    return run_app(
+        robot, path, args.renderer, stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+    )
+
+
+def cmd_edit(args: argparse.Namespace) -> int:
+    robot, path, stamp = _open(args.robot)
+    from dhsim_tui.tui.app import run_app
+
+    return run_app(
+        robot, path, start="edit", stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+    )
+
+
+def cmd_new(args: argparse.Namespace) -> int:
+    from dhsim_tui.core.model.editing import new_robot
+
+    robot = new_robot(args.name.strip() or "new robot")  # checked before any UI starts
+    from dhsim_tui.tui.app import run_app
+
+    return run_app(robot, None, start="new", ascii=ascii_screen(args), theme=args.theme)
+
+
+def _add_charset_options(parser: argparse.ArgumentParser) -> None:
+    """``--ascii`` / ``--unicode``: override what the locale and TERM say;
+    ``--theme``: the colours."""
+    parser.add_argument(
+        "--theme",
+        choices=("dark", "light", "ansi"),
+        default="dark",
+        help="colours: dark (default), light, or ansi (the terminal's own palette)",
+    )
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument(
+        "--ascii",
+        dest="force_ascii",
+        action="store_const",
+        const=True,
+        default=None,
+        help="draw only 7-bit ASCII (default when the locale is not UTF-8, or TERM=linux)",
+    )
+    group.add_argument(
+        "--unicode",
+        dest="force_ascii",
+        action="store_const",
+        const=False,
+        help="draw with Unicode box drawing and symbols whatever the locale says",
+    )
+
+
+def _subparsers() -> dict[str, _Parser]:
+    check = _Parser(prog="dhsim check", description="Validate a robot and summarise it.")
+    check.add_argument("robot", help="a robot file or a bundled robot's name")
+    check.set_defaults(func=cmd_check)
+    listing = _Parser(prog="dhsim list", description="List the bundled robots.")
+    listing.set_defaults(func=cmd_list)
+    edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
+    edit.add_argument("robot", help="a robot file or a bundled robot's name")
+    _add_charset_options(edit)
+    edit.set_defaults(func=cmd_edit)
+    new = _Parser(prog="dhsim new", description="Start a new robot in the table editor.")
+    new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
+    _add_charset_options(new)
+    new.set_defaults(func=cmd_new)
+    return {
+        **kinematics_subparsers(_Parser),
+        "check": check,
+        "list": listing,
+        "edit": edit,
+        "new": new,
+        **files_subparsers(_Parser),
+        **workspace_subparsers(_Parser),
+        **draw_subparsers(_Parser),
+    }
+
+
+MAIN_HELP = """\
+usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
+             [--theme dark|light|ansi]
+                                 open the simulator (default: the bundled Puma 560)
+       dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
+       dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--all] [--json]
+       dhsim check ROBOT
+       dhsim list
+       dhsim import FILE.urdf|FILE.csv [--tip LINK] [--base LINK]
+                    [--convention standard|modified] [--units mm|cm|m|in] [-o OUT.toml]
+       dhsim export ROBOT --format urdf|csv|json [-o FILE]
+       dhsim convert ROBOT --convention standard|modified [-o FILE.toml]
+       dhsim workspace ROBOT [--n N] [--seed S] [--json]
+                                 where the tool can go: bounding box and reach
+       dhsim draw ROBOT [--q V1,V2,...|--pose NAME] [--view top|front|side|3d|all]
+                  [--size WxH] [--fit] [--frames all|ends|none] [--orbit AZ,EL]
+                  [-o FILE.svg|FILE.txt]
+                                 the views as a picture for a report
+       dhsim edit ROBOT [--ascii | --unicode]
+                                 the table editor
+       dhsim new [NAME] [--ascii | --unicode]
+                                 a new robot in the table editor
+
+ROBOT is a robot file (.toml) or a bundled robot's name, e.g. puma560.
+The simulator draws in 7-bit ASCII when the locale (LC_ALL, LC_CTYPE, LANG)
+is not UTF-8 or TERM=linux; --ascii and --unicode decide instead.
+--theme ansi uses the terminal's own colour palette.
+Run 'dhsim COMMAND --help' for a command's options."""
+
+
+def _main_parser() -> _Parser:
+    parser = _Parser(prog="dhsim", add_help=False)
+    parser.add_argument("robot", nargs="?", default=None)
+    parser.add_argument("--renderer", choices=("plotext", "braille"), default="plotext")
+    _add_charset_options(parser)
+    parser.set_defaults(func=cmd_run)
+    return parser
+
+
+#: the commands that open the simulator: they need a terminal
+INTERACTIVE = (cmd_run, cmd_edit, cmd_new)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    _escape_unencodable(sys.stdout)
+    _escape_unencodable(sys.stderr)
+    if sys.stdout is None:  # started with descriptor 1 closed (`dhsim ... >&-`)
+        if sys.stderr is not None:
+            print("dhsim: cannot write the output: standard output is closed", file=sys.stderr)
+        return EXIT_USAGE
+    stdout = sys.stdout
+    sys.stdout = _Output(stdout)  # type: ignore[assignment]
+    try:
+        return _run(args_list, stdout)
+    finally:
+        if isinstance(sys.stdout, _Output):
+            sys.stdout = sys.stdout.stream
+
+
+def _command(args_list: list[str], stdout) -> int:
+    """Parse the command line and run the command; its exit status."""
+    if args_list and args_list[0] in ("-h", "--help"):
+        print(MAIN_HELP)
+        return 0
+    if args_list and args_list[0] == "--version":
+        print(f"dhsim {__version__}")
+        return 0
+    subs = _subparsers()
+    try:
+        if args_list and args_list[0] in subs:
+            parser = subs[args_list[0]]
+            args = parser.parse_args(_glue_negative_values(args_list[1:]))
+        else:
+            args = _main_parser().parse_args(args_list)
+    except SystemExit as exc:  # argparse after printing a command's --help
+        return exc.code if isinstance(exc.code, int) else 0
+    if args.func in INTERACTIVE:
+        sys.stdout = stdout  # the simulator's terminal, as it was given
+        if not has_terminal():
+            print(NEEDS_TERMINAL, file=sys.stderr)
+            return EXIT_USAGE
+    with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
+        return args.func(args)
+
+
+def _run(args_list: list[str], stdout) -> int:
+    """Run one command; every failure ends here as one line and a status."""
+    try:
+        status = _command(args_list, stdout)
+        sys.stdout.flush()  # a closed pipe or a full disk shows here, not at exit
+        return status
+    except UsageError as exc:
+        print(printable(str(exc)), file=sys.stderr)
+        return EXIT_USAGE
+    except DhsimError as exc:
+        print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:  # e.g. `dhsim list | head -1`
+        _silence_stdout()
+        return 0
+    except OutputError as exc:  # e.g. `dhsim fk puma560 > /dev/full`
+        _silence_stdout()  # what is still buffered goes nowhere at exit, quietly
+        print(f"dhsim: cannot write the output: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # the last resort: one line and a failure status
+        print(
+            f"dhsim: internal error: {printable(f'{type(exc).__name__}: {exc}')}",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL
+
+
+def _escape_unencodable(stream: object) -> None:
+    """Text the terminal's encoding cannot show (a C locale and a name in
+    Chinese) is written as backslash escapes instead of raising an error."""
+    with contextlib.suppress(AttributeError, ValueError, OSError):
+        stream.reconfigure(errors="backslashreplace")  # type: ignore[attr-defined]
+
+
+def _silence_stdout() -> None:
+    """After a closed pipe, send what Python still flushes at exit nowhere."""
+    with contextlib.suppress(AttributeError, ValueError, OSError):
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())

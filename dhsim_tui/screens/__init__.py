@@ -1,1 +1,0 @@
-"""Screens of the simulator: control (joints, pose, views), help, value entry."""

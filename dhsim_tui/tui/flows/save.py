@@ -1,0 +1,282 @@
+"""Saving a robot from the UI: a name when it needs one, and never over a file
+that changed on disk or may not be written, without asking.
+
+Used by the editor's ctrl+s and "save as", and by the simulator's ``P`` and
+quit guard. Call it from a ``@work`` worker (it asks questions with
+``push_screen_wait``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from types import EllipsisType
+from typing import Literal
+
+from textual.app import App
+
+from dhsim_tui.core.files.library import bundled_dir
+from dhsim_tui.core.files.robotfile import (
+    FileChangedError,
+    FileStamp,
+    ReadOnlyError,
+    load_with_stamp,
+    read_stamp,
+    save,
+)
+from dhsim_tui.core.model import editing
+from dhsim_tui.core.model.errors import DhsimError, RobotFileError
+from dhsim_tui.core.model.merge import Side, merge
+from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.terminal.charset import shown
+from dhsim_tui.tui.screens.dialogs import (
+    Choice,
+    Confirm,
+    FileChanged,
+    ReadOnly,
+    reason_of,
+    short_path,
+)
+from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR
+from dhsim_tui.tui.screens.value_entry import ValueEntry
+
+#: how a flow tells the user something: (message, is_error)
+Report = Callable[[str, bool], None]
+
+
+@dataclass(frozen=True)
+class SaveResult:
+    """What is on disk now: ``saved`` (``robot`` was written) or ``reloaded``
+    (the user chose the file's new content; ``robot`` is what it holds)."""
+
+    kind: Literal["saved", "reloaded"]
+    robot: Robot
+    path: Path
+    stamp: FileStamp
+
+
+def is_bundled(path: Path | None) -> bool:
+    """A bundled robot file is a template: saving it asks for a new name."""
+    if path is None:
+        return False
+    try:
+        return path.resolve().parent == bundled_dir().resolve()
+    except (OSError, RuntimeError, ValueError):  # working folder gone, loop, NUL
+        return False
+
+
+#: a path in a message is at most this long, so it fits one line of the
+#: editor's status at 80 columns (the reason comes first)
+MESSAGE_PATH_LIMIT = 50
+#: the most a file's text is read to keep its comments in a "save as"
+BASE_TEXT_LIMIT = 1_000_000
+
+
+def failure(error: BaseException, path: object) -> str:
+    """``not saved: <reason> — <path shortened in the middle>``: the reason first."""
+    reason = reason_of(error, path).removeprefix("cannot save: ")
+    return f"not saved: {reason} — {short_path(path, MESSAGE_PATH_LIMIT)}"
+
+
+async def save_flow(
+    app: App,
+    robot: Robot,
+    path: Path | None,
+    stamp: FileStamp | None,
+    *,
+    base_text: str | None = None,
+    save_as: bool = False,
+    report: Report | None = None,
+) -> SaveResult | None:
+    """Save ``robot`` to ``path`` (expecting the file ``stamp`` describes), or
+    ask for a name when there is no path, it is a bundled file, or
+    ``save_as``. None when cancelled or failed, after telling the user
+    (``report``, else a notification); everything stays in memory.
+
+    ``base_text`` (default: what ``path`` holds) is where a new file starts,
+    so the comments of the file the robot came from are kept."""
+
+    def tell(message: str, error: bool = False) -> None:
+        message = shown(message, app)
+        if report is not None:
+            report(message, error)
+        else:
+            app.notify(message, severity="error" if error else "information", timeout=8)
+
+    if base_text is None:
+        base_text = file_text(path)
+    target: Path | None = path
+    expect: FileStamp | EllipsisType | None = stamp
+    if path is None or save_as or is_bundled(path):
+        asked = await _ask_target(app, robot, path, save_as)
+        if asked is None:
+            tell("not saved")
+            return None
+        target, expect = asked
+    assert target is not None
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        where = short_path(target, MESSAGE_PATH_LIMIT)
+        tell(f"not saved: cannot make its folder: {reason_of(exc, target.parent)} — {where}", True)
+        return None
+    while True:
+        try:
+            new_stamp = save(robot, target, expect=expect, base_text=base_text)
+        except FileChangedError as exc:
+            answer = await app.push_screen_wait(FileChanged(target, _why(exc)))
+            if answer == "overwrite":
+                expect = _stamp_now(target)
+                continue
+            if answer == "reload":
+                return _reload(target, tell)
+            tell("not saved: the file changed on disk; nothing was written")
+            return None
+        except ReadOnlyError as exc:
+            if await app.push_screen_wait(ReadOnly(target, reason_of(exc, target))):
+                return await save_flow(
+                    app, robot, target, None, base_text=base_text, save_as=True, report=report
+                )
+            tell(
+                f"not saved: the file is read-only — {short_path(target, MESSAGE_PATH_LIMIT)}", True
+            )
+            return None
+        except (DhsimError, OSError, ValueError) as exc:
+            tell(failure(exc, target), True)
+            return None
+        tell(f"saved {short_path(target, MESSAGE_PATH_LIMIT)}")
+        return SaveResult("saved", robot, target, new_stamp)
+
+
+def _why(error: FileChangedError) -> str:
+    """The part of the core's message after 'changed on disk since it was opened'."""
+    text = str(error)
+    for mark in (": ", " ("):
+        _, found, tail = text.rpartition("since it was opened" + mark)
+        if found:
+            return tail.removesuffix(")")
+    return ""
+
+
+def _stamp_now(target: Path) -> FileStamp | EllipsisType | None:
+    """What "overwrite" expects: the file as it is now (no check if it cannot be read)."""
+    try:
+        return read_stamp(target)
+    except RobotFileError:
+        return ...
+
+
+def _reload(target: Path, tell: Report) -> SaveResult | None:
+    try:
+        robot, stamp = load_with_stamp(target)
+    except DhsimError as exc:
+        where = short_path(target, MESSAGE_PATH_LIMIT)
+        tell(f"cannot reload: {reason_of(exc, target)} — {where}", True)
+        return None
+    return SaveResult("reloaded", robot, target, stamp)
+
+
+@dataclass(frozen=True)
+class Reapplied:
+    """After a reload: the robot to show (the file's with my edits on top),
+    and what to say about it."""
+
+    robot: Robot
+    message: str
+    combined: bool  # False: the two could not be combined; ``robot`` is mine
+
+
+async def reapply_edits(app: App, base: Robot | None, mine: Robot, theirs: Robot) -> Reapplied:
+    """The file as it is on disk (``theirs``) with my unsaved edits (against
+    ``base``, what the file held when it was read) put back on top; each
+    field both sides changed is asked about, naming it and both values
+    (escape keeps the file's)."""
+    found = merge(base if base is not None else theirs, mine, theirs)
+    choices: dict[str, Side] = {}
+    for conflict in found.conflicts:
+        answer = await app.push_screen_wait(
+            Choice(
+                f"{conflict.label}: changed here and on disk",
+                [
+                    ("mine", f"keep yours: {conflict.mine}"),
+                    ("theirs", f"keep the file's: {conflict.theirs}"),
+                ],
+                "mine",
+                hint="↑↓ choose · enter picks · escape keeps the file's",
+            )
+        )
+        choices[conflict.key] = "mine" if answer == "mine" else "theirs"
+    try:
+        merged = found.resolve(choices)
+    except DhsimError as exc:
+        return Reapplied(mine, f"{exc}; nothing changed here (ctrl+s asks again)", False)
+    kept = sum(1 for side in choices.values() if side == "mine")
+    asked = f"; {len(choices)} asked, {kept} of yours kept" if choices else ""
+    if merged == theirs:
+        return Reapplied(merged, f"the file's version (none of your edits left){asked}", True)
+    return Reapplied(
+        merged, f"the file's changes, with your edits on top{asked} (ctrl+z takes yours out)", True
+    )
+
+
+def file_text(path: Path | None) -> str | None:
+    """The text of a robot file, to keep its comments when the robot is saved
+    to a new file (None when there is none or it cannot be read)."""
+    try:
+        if path is None or path.stat().st_size > BASE_TEXT_LIMIT:
+            return None
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError, ValueError):
+        return None
+
+
+def suggested_name(robot: Robot, path: Path | None, save_as: bool = False) -> str:
+    """A file name to offer: the file's own (a bundled irb140 offers
+    "irb140"), else one made from the robot's name; "save as" of a file
+    already in robots/ offers NAME_copy."""
+    name = editing.slug(robot.name)
+    if path is not None:
+        with contextlib.suppress(DhsimError):
+            name = editing.check_file_name(path.stem)
+        if save_as and _same_file(path, ROBOTS_DIR / f"{name}.toml"):
+            name = f"{name}_copy"
+    return name
+
+
+async def _ask_target(
+    app: App, robot: Robot, path: Path | None, save_as: bool
+) -> tuple[Path, FileStamp | None] | None:
+    """Ask a file name; confirm replacing a different existing file. Returns
+    the target and what it must hold when written (None: must not exist)."""
+    name = await app.push_screen_wait(
+        ValueEntry(
+            "save as",
+            suggested_name(robot, path, save_as),
+            f"a file name; saved as {ROBOTS_DIR}/<name>.toml",
+            editing.check_file_name,
+        )
+    )
+    if name is None:
+        return None
+    target = ROBOTS_DIR / f"{name}.toml"
+    try:
+        stamp = read_stamp(target)
+    except RobotFileError:  # there is something, unreadable: the save will say why
+        return target, None
+    if stamp is None:
+        return target, None
+    same = path is not None and _same_file(path, target)
+    if not same and not await app.push_screen_wait(
+        Confirm(f"{short_path(target)} exists. Replace it?", "Replace a file")
+    ):
+        return None
+    return target, stamp
+
+
+def _same_file(one: Path, other: Path) -> bool:
+    try:
+        return one.samefile(other)
+    except (OSError, ValueError):
+        return False

@@ -1,1 +1,0 @@
-"""Widgets: they arrange and render what the screens hand them, never compute kinematics."""
