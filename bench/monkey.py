@@ -193,6 +193,7 @@ def run_monkey(
     start = time.monotonic()
     robot_file = load_robot("puma560")[1]
     done = 0
+    logged: set[str] = set()
     while done < sequences:
         folder = Path(tempfile.mkdtemp(prefix="dhsim-monkey-"))
         (folder / "robots").mkdir()
@@ -233,7 +234,13 @@ def run_monkey(
         finally:
             screen.close()
             _check_folder(folder, report, what)
+            for crash in sorted(folder.glob("crash-*.txt")):  # the traceback dhsim kept
+                report.tracebacks.append(f"{what}: {crash.name}:\n{crash.read_text()}")
             shutil.rmtree(folder, ignore_errors=True)
+        for line in report.tracebacks + report.hangs + report.damaged:
+            if line not in logged:  # as soon as it is found: a long run may be stopped
+                logged.add(line)
+                log(f"-- {line}")
         log(f"{done}/{sequences} sequences, {report.events} events, {len(report.tracebacks)} "
             f"tracebacks, {len(report.hangs)} hangs, {len(report.damaged)} damaged")  # fmt: skip
     report.seconds = time.monotonic() - start
