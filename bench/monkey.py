@@ -16,7 +16,7 @@ unsaved change discarded). After every process:
 
 ``--palette-bursts N`` runs the fault campaign's crash N times: ``ctrl+p``
 and then, 0-50 ms later, ``s``, ``x``, backspace or ``escape`` (or another
-``ctrl+p``), in the editor. ``tests/test_monkey.py`` runs a short campaign of
+``ctrl+p``), in the editor. ``tests/pty/test_monkey.py`` runs a short campaign of
 both; this script is the long one, whose figures the README gives.
 """
 

@@ -24,7 +24,7 @@ from textual.events import MouseDown, MouseMove, MouseUp
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.motion.jog import snapped
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.widgets.joint_panel import BAR_START, JointRow, bar_value
+from dhsim_tui.tui.widgets.joint_row import BAR_START, JointRow, bar_value
 
 
 def _event(kind, row: JointRow, x: int, button: int = 1):

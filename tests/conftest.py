@@ -4,7 +4,6 @@ from the reference's formulas (plain 4×4 products), to check the core against."
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 import pytest
@@ -104,12 +103,10 @@ def in_tmp(tmp_path, monkeypatch):
     return tmp_path
 
 
-#: what a test module of the terminal UI imports (the rest are the core's and
-#: the command line's, which .ci/run also runs under every Python it finds)
-_UI = re.compile(
-    r"dhsim_tui\.(app|screens|widgets|screenshot|colour)|from textual|pty_screen|snap_compare"
-    r"|run_test"
-)
+#: the folders of the terminal UI's tests (Textual's Pilot, a pseudo-terminal);
+#: the rest are the core's, the scene's and the command line's, which .ci/run
+#: also runs under every Python it finds
+UI_FOLDERS = ("tui", "pty")
 
 
 def pytest_configure(config):
@@ -117,15 +114,8 @@ def pytest_configure(config):
 
 
 def pytest_collection_modifyitems(config, items):
-    """Mark every test of a module that drives the UI ``ui``: ``-m "not ui"``
-    runs the core's and the command line's alone."""
-    seen: dict[str, bool] = {}
+    """Mark every test in a UI folder ``ui``: ``-m "not ui"`` runs the core's,
+    the scene's and the command line's alone."""
     for item in items:
-        path = str(item.path)
-        if path not in seen:
-            try:
-                seen[path] = bool(_UI.search(item.path.read_text(encoding="utf-8")))
-            except OSError:
-                seen[path] = False
-        if seen[path]:
+        if item.path.parent.name in UI_FOLDERS:
             item.add_marker(pytest.mark.ui)

@@ -8,10 +8,10 @@ nothing from dhsim's kinematics, offsets and base included.
 from __future__ import annotations
 
 import numpy as np
+from conftest import reference_frames
 from hypothesis import strategies as st
 
 from dhsim_tui.core.model.robot import AXES, UNITS, Joint, Robot, Tool
-from tests.conftest import reference_frames
 
 
 def reference_pose(robot: Robot, q) -> np.ndarray:

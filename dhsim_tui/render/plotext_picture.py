@@ -13,7 +13,7 @@ Only plotext's documented figure methods are used, on a figure of our own:
 ``plotext._figure._figure_class`` (the class behind ``plotext.plot``;
 textual-plotext uses it too) and its ``_limit_size`` (what ``plotext.limit_size``
 does for the global figure) are the private names, so plotext is pinned
-exactly and ``tests/test_render.py`` fails if they change. No NaN or inf ever reaches
+exactly and ``tests/scene/test_render.py`` fails if they change. No NaN or inf ever reaches
 plotext: pen lifts become ``None`` (plotext 5's own gap marker) and every
 number is checked finite.
 """
@@ -94,7 +94,7 @@ class PlotextPainter:
     plotext lays out the axes, ticks and labels; that frame is rebuilt only
     when the size, limits or ticks change (resize, zoom). On a joint step
     only the wireframe moves: its braille cells are put on the last frame's
-    canvas, where plotext would place them (``tests/test_render.py`` checks
+    canvas, where plotext would place them (``tests/scene/test_render.py`` checks
     that against plotext's own scatter of the same glyphs). In ASCII plotext
     draws the lines itself, on every frame.
     """

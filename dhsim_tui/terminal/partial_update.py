@@ -9,7 +9,7 @@ starts at the first one that reaches it, as Textual's ``__rich_console__``
 already does; a segment is never cut, so no wide character is split.
 
 ``install()`` replaces the method on the class (Textual is pinned exactly;
-``tests/test_bytes.py`` checks the screen comes out the same, cell for cell).
+``tests/tui/test_bytes.py`` checks the screen comes out the same, cell for cell).
 """
 
 from __future__ import annotations

@@ -40,11 +40,12 @@ from dhsim_tui.tui.colour import install_filters
 from dhsim_tui.tui.flows.export import export_flow
 from dhsim_tui.tui.flows.recover import offer_recovery
 from dhsim_tui.tui.flows.save import is_bundled, reapply_edits, save_flow
+from dhsim_tui.tui.keys import Keys
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
-from dhsim_tui.tui.screens.palette import DhsimCommands, DhsimPalette, screens_with_commands
+from dhsim_tui.tui.screens.palette import DhsimCommands, DhsimPalette
 from dhsim_tui.tui.screens.start import StartScreen
 from dhsim_tui.tui.screens.value_entry import ValueEntry
 from dhsim_tui.tui.screenshot import export_svg
@@ -122,6 +123,10 @@ class DhsimApp(KeysInOrder):
             tooltip="The command palette: every command by name",
             show=False,
             priority=True,
+            group=Keys(
+                legend=False,
+                help="command palette: open, import, save, export, convert, poses, views…",
+            ),
         ),
         # Textual binds ctrl+c to "copy" (screens, inputs) and a "press ctrl+q" hint:
         # here it quits, through the same unsaved-changes question as q and ctrl+q
@@ -497,7 +502,7 @@ class DhsimApp(KeysInOrder):
             self.use_command_palette
             and not CommandPalette.is_open(self)
             and (self._palette is None or self._palette.gone)
-            and isinstance(self.screen, screens_with_commands())
+            and hasattr(self.screen, "palette_commands")  # a screen with commands
         )
 
     def action_command_palette(self) -> None:

@@ -1,6 +1,6 @@
 """Make rtb_puma560_configs.json: Puma 560 joint vectors and the configuration
 letters the Robotics Toolbox for Python gives them (l/r shoulder, u/d elbow,
-n/f wrist), the reference for tests/test_ik_labels_rtb.py.
+n/f wrist), the reference for tests/core/test_ik_labels_rtb.py.
 
 Runs only where the toolbox is installed, never in the project's environment
 (it is not a dependency of dhsim). In a scratch virtual environment::

@@ -7,40 +7,32 @@ unit length. Standard D-H joint i moves about frame i−1's z; modified D-H
 joint i about frame i's own z.
 
 Like forward kinematics (see kinematics.py), the Jacobian is compiled per
-robot into one straight-line Python function: the chain's own lines, each
-joint's axis and origin kept as it passes, the cross products written out at
-the end, constants folded (the first joint's axis is a constant). Until a
-robot has asked for it :data:`COMPILE_AFTER` times it is read off the frames
-instead (:func:`jacobian_from_frames`, the same operations, so the same
-numbers), which spares the editor a compile per edit.
+robot into one straight-line Python function
+(:mod:`dhsim_tui.core.analysis.jacobian_codegen`). Until a robot has asked
+for it :data:`COMPILE_AFTER` times it is read off the frames instead
+(:func:`jacobian_from_frames`, the same operations, so the same numbers),
+which spares the editor a compile per edit. The manipulability's written-out
+Cholesky factorisation is in :mod:`dhsim_tui.core.analysis.cholesky`.
 """
 
 from __future__ import annotations
 
-import functools
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from dhsim_tui.core.analysis.workspace import reach
+from dhsim_tui.core.analysis.cholesky import root_gram_det
+from dhsim_tui.core.analysis.jacobian_codegen import compile_jacobian
+from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.kinematics import (
-    COMPILE_AFTER,
-    _constant_lines,
-    _joint_lines,
-    _start,
-    _step,
-)
+from dhsim_tui.core.model.kinematics import COMPILE_AFTER
 from dhsim_tui.core.model.robot import Robot
 
 #: the arm counts as singular when its normalised manipulability drops below this
 SINGULAR_THRESHOLD = 1e-3
 #: warn from this value on
 NEAR_SINGULAR = 0.02
-
-_STATE = "x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2"
 
 
 def jacobian_from_frames(robot: Robot, frames: np.ndarray) -> np.ndarray:
@@ -62,112 +54,7 @@ def jacobian_from_frames(robot: Robot, frames: np.ndarray) -> np.ndarray:
     return jac
 
 
-# -- the compiled Jacobian ---------------------------------------------------------
-
-
-def _term(coefficient: float | str, name: str) -> str | None:
-    """``coefficient * name`` with 0 and ±1 folded (None for a zero)."""
-    if isinstance(coefficient, str):
-        return f"{coefficient}*{name}"
-    if coefficient == 0.0:
-        return None
-    if coefficient == 1.0:
-        return name
-    if coefficient == -1.0:
-        return f"-{name}"
-    return f"{coefficient!r}*{name}"
-
-
-def _difference(first: str | None, second: str | None) -> str:
-    if first is None and second is None:
-        return "0.0"
-    if second is None:
-        return str(first)
-    if first is None:
-        return f"-({second})"
-    return f"{first} - {second}"
-
-
-def _value(v: float | str) -> str:
-    return v if isinstance(v, str) else repr(float(v))
-
-
-def _first_axis(robot: Robot) -> tuple[float, ...]:
-    """Joint 1's axis and origin (6 floats): constants, whatever q is. Standard
-    D-H: frame 0's z and origin; modified: frame 1's, whose z and (for a
-    revolute joint) origin the joint's own turn leaves alone. Computed by the
-    chain's own lines, so the same bits as at run time."""
-    state = _start(robot)
-    if robot.convention != "standard":
-        state = _step(tuple(_joint_lines(robot, 0, "qi")))(state, 0.0)
-    return tuple(state[6:12])
-
-
-def jacobian_source(robot: Robot, *, normalise: bool = False, with_state: bool = False) -> str:
-    """The Python source of the robot's compiled Jacobian ``f(q)``.
-
-    It returns the 6×n Jacobian as a flat row-major list; ``with_state`` also
-    returns the end effector's 12-float state (as ``Kinematics.state``) first.
-    ``normalise`` gives :func:`normalised`'s dimensionless Jacobian instead
-    (linear rows per reach, prismatic columns per reach)."""
-    n = robot.dof
-    standard = robot.convention == "standard"
-    tool = None if robot.tool.is_identity else robot.kinematics.tool
-    body = [f"{_STATE} = {', '.join(repr(float(v)) for v in _start(robot))}"]
-    body.append(f"{', '.join(f'q{i}' for i in range(n))}, = q")
-    axes: list[tuple] = []
-
-    def capture(i: int) -> tuple:
-        if i == 0:
-            return _first_axis(robot)
-        body.append(f"u{i}x, u{i}y, u{i}z, o{i}x, o{i}y, o{i}z = z0, z1, z2, p0, p1, p2")
-        return tuple(f"{k}{i}{c}" for k in "uo" for c in "xyz")
-
-    for i in range(n):
-        if standard:
-            axes.append(capture(i))
-        body += _joint_lines(robot, i)
-        if not standard:
-            axes.append(capture(i))
-    if tool is not None:
-        body += _constant_lines(tool)
-    inverse = 1.0 / length_scale(robot) if normalise else 1.0
-    columns = []
-    for i, joint in enumerate(robot.joints):
-        ax, ay, az, ox, oy, oz = axes[i]
-        if not joint.is_revolute:  # (z, 0): per unit length, or per reach (× reach / reach)
-            columns.append([_value(ax), _value(ay), _value(az), "0.0", "0.0", "0.0"])
-            continue
-        for k, (p, o) in enumerate(zip(("p0", "p1", "p2"), (ox, oy, oz), strict=True)):
-            lever = f"{p} - {_value(o)}" if o != 0.0 else p
-            if inverse != 1.0:
-                lever = f"({lever})*{inverse!r}"
-            body.append(f"l{k} = {lever}")
-        columns.append(
-            [
-                _difference(_term(ay, "l2"), _term(az, "l1")),
-                _difference(_term(az, "l0"), _term(ax, "l2")),
-                _difference(_term(ax, "l1"), _term(ay, "l0")),
-                _value(ax),
-                _value(ay),
-                _value(az),
-            ]
-        )
-        # the lever's names are reused: keep this column's values before the next
-        names = [f"c{i}_{r}" for r in range(3)]
-        body.append(f"{', '.join(names)} = {', '.join(columns[-1][:3])}")
-        columns[-1][:3] = names
-    flat = ", ".join(columns[c][r] for r in range(6) for c in range(n))
-    body.append(f"return ({_STATE}), [{flat}]" if with_state else f"return [{flat}]")
-    return "def jacobian(q):\n" + "".join(f"    {line}\n" for line in body)
-
-
-def compile_jacobian(robot: Robot, *, normalise: bool = False, with_state: bool = False):
-    """:func:`jacobian_source` compiled: ``f(q) -> flat list`` (or ``(state, flat)``)."""
-    source = jacobian_source(robot, normalise=normalise, with_state=with_state)
-    namespace: dict = {"_cos": math.cos, "_sin": math.sin}
-    exec(compile(source, f"<dhsim jacobian: {robot.name}>", "exec"), namespace)
-    return namespace["jacobian"]
+# -- the compiled Jacobian, cached on the robot --------------------------------------
 
 
 class _Compiled:
@@ -237,11 +124,6 @@ def _sample_jacobians(robot: Robot) -> list[np.ndarray]:
         cached = [normalised(robot, jacobian(robot, q)) for q in samples]
         object.__setattr__(robot, "_sample_jacobians", cached)
     return cached
-
-
-def length_scale(robot: Robot) -> float:
-    """The arm's characteristic length (its reach), to make lengths dimensionless."""
-    return reach(robot) or 1.0
 
 
 def normalised(robot: Robot, jac: np.ndarray) -> np.ndarray:
@@ -314,83 +196,6 @@ def dexterity(
 
 
 # -- manipulability without numpy's per-call overhead -----------------------------
-
-
-def _gram_cholesky_lines(m: int, n: int, damped: bool) -> tuple[list[str], int]:
-    """Straight-line Cholesky factor L of the smaller Gram matrix of a flat m×n
-    ``jac`` (JᵀJ when n <= m, else JJᵀ), plus ``lam`` on its diagonal when
-    ``damped``: lines defining ``L{i}_{j}``, and the matrix's side."""
-    names = [[f"j{r}_{c}" for c in range(n)] for r in range(m)]
-    lines = [f"{', '.join(name for row in names for name in row)}, = jac"] if m and n else []
-    side = min(m, n)
-
-    def gram(i: int, j: int) -> str:
-        if n <= m:
-            return " + ".join(f"{names[r][i]}*{names[r][j]}" for r in range(m))
-        return " + ".join(f"{names[i][c]}*{names[j][c]}" for c in range(n))
-
-    for i in range(side):
-        for j in range(i + 1):
-            value = gram(i, j) + (" + lam" if damped and i == j else "")
-            value += "".join(f" - L{i}_{t}*L{j}_{t}" for t in range(j))
-            if i == j:
-                lines.append(f"L{i}_{i} = _sqrt({value})")
-            else:
-                lines.append(f"L{i}_{j} = ({value}) / L{j}_{j}")
-    return lines, side
-
-
-def _generated(name: str, lines: list[str], arguments: str) -> Callable:
-    source = f"def {name}({arguments}):\n" + "".join(f"    {line}\n" for line in lines)
-    namespace: dict = {"_sqrt": math.sqrt}
-    exec(compile(source, f"<dhsim {name}>", "exec"), namespace)
-    return namespace[name]
-
-
-@functools.lru_cache(maxsize=64)
-def root_gram_det(m: int, n: int) -> Callable:
-    """``f(jac) -> sqrt det`` of the smaller Gram matrix of a flat m×n ``jac``:
-    the product of its singular values, 0.0 when it is singular."""
-    lines, side = _gram_cholesky_lines(m, n, damped=False)
-    guarded = []
-    for line in lines:  # a pivot that is not positive: singular (or rounding of it)
-        if line.startswith("L") and "_sqrt(" in line:
-            head, value = line.split(" = _sqrt(", 1)
-            guarded += [f"d = {value[:-1]}", "if d <= 0.0: return 0.0", f"{head} = _sqrt(d)"]
-        else:
-            guarded.append(line)
-    guarded.append("return " + ("*".join(f"L{i}_{i}" for i in range(side)) or "1.0"))
-    return _generated("root_gram_det", guarded, "jac")
-
-
-@functools.lru_cache(maxsize=64)
-def damped_solver(m: int, n: int) -> Callable:
-    """``f(jac, e, lam) -> dx``: the damped least-squares step
-    ``(JᵀJ + lam·I)⁻¹ Jᵀ e = Jᵀ (JJᵀ + lam·I)⁻¹ e`` for a flat m×n ``jac``, by a
-    Cholesky factorisation of the smaller of the two, written out in full (no
-    numpy call: at this size its per-call overhead is most of the cost). Raises
-    ValueError or ZeroDivisionError when the matrix is not positive definite."""
-    lines, side = _gram_cholesky_lines(m, n, damped=True)
-    arguments = "jac, e, lam"
-    if not side:  # no row to solve for (or no joint): no step
-        return _generated("damped_solver", [f"return {[0.0] * n!r}"], arguments)
-    lines.append(f"{', '.join(f'e{r}' for r in range(m))}, = e")
-    if n <= m:  # right-hand side Jᵀe
-        rhs = [" + ".join(f"j{r}_{c}*e{r}" for r in range(m)) for c in range(n)]
-    else:
-        rhs = [f"e{r}" for r in range(m)]
-    for i in range(side):  # L z = rhs
-        value = f"({rhs[i]})" + "".join(f" - L{i}_{t}*z{t}" for t in range(i))
-        lines.append(f"z{i} = ({value}) / L{i}_{i}")
-    for i in reversed(range(side)):  # Lᵀ y = z
-        value = f"z{i}" + "".join(f" - L{t}_{i}*y{t}" for t in range(i + 1, side))
-        lines.append(f"y{i} = ({value}) / L{i}_{i}")
-    if n <= m:
-        lines.append(f"return [{', '.join(f'y{c}' for c in range(n))}]")
-    else:  # dx = Jᵀ y
-        back = [" + ".join(f"j{r}_{c}*y{r}" for r in range(m)) for c in range(n)]
-        lines.append(f"return [{', '.join(back)}]")
-    return _generated("damped_solver", lines, arguments)
 
 
 def _measure_plan(robot: Robot) -> tuple:

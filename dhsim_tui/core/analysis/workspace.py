@@ -1,5 +1,6 @@
-"""The seed's work area and the robot's reach (reference §3), and the
-workspace: a cloud of tool positions from random joint vectors, summarised."""
+"""The seed's work area and the robot's reach (reference §3), the length
+the solvers measure against (:func:`length_scale`), and the workspace: a
+cloud of tool positions from random joint vectors, summarised."""
 
 from __future__ import annotations
 
@@ -32,6 +33,11 @@ def reach(robot: Robot) -> float:
     Puma 560: 1034 mm against its real 877 mm). :func:`arm_reach` is the
     reach itself."""
     return sum(link_length(j) for j in robot.joints) + robot.tool.length
+
+
+def length_scale(robot: Robot) -> float:
+    """The arm's characteristic length (its reach), to make lengths dimensionless."""
+    return reach(robot) or 1.0
 
 
 #: joint vectors sampled to start the search for the reach, and how many of

@@ -1,4 +1,5 @@
-"""Robot files: TOML in, TOML out (the schema is in the README).
+"""Robot files: TOML in, TOML out (the schema is in the README; its keys and
+checks are :mod:`dhsim_tui.core.files.robotschema`'s).
 
 Loading is strict: every key is checked for type and spelling and every
 problem is reported as one :class:`RobotFileError` naming the file and the
@@ -7,9 +8,11 @@ and any long name or key shortened in the middle. One UTF-8 byte order mark
 is accepted (not two). Before the TOML parser sees a file, it is scanned for
 what would make the parser slow or greedy (a key of thousands of dotted
 parts takes Python's parser minutes and gigabytes): a key path of more than
-:data:`MAX_KEY_PARTS` parts or a line of more than :data:`MAX_LINE_CHARS`
-characters is refused, naming the line. A URDF or a CSV given as a robot
-file is named as such, with the ``dhsim import`` command that reads it.
+:data:`~dhsim_tui.core.files.tomlparse.MAX_KEY_PARTS` parts or a line of more
+than :data:`~dhsim_tui.core.files.tomlparse.MAX_LINE_CHARS` characters is
+refused, naming the line (:mod:`dhsim_tui.core.files.tomlparse`). A URDF or a
+CSV given as a robot file is named as such, with the ``dhsim import`` command
+that reads it.
 
 Saving is atomic (temporary file, fsync, rename) and ``load(save(robot)) ==
 robot`` exactly. Saving over a robot file keeps the user's comments and
@@ -20,61 +23,29 @@ changed on disk since it was read (:class:`FileStamp`).
 
 from __future__ import annotations
 
-import difflib
 import hashlib
 import os
 import re
 import shlex
 import stat
-import sys
-from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import EllipsisType
-from typing import Any
 
 import tomli_w
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # Python 3.10: the same parser, as a package
-    import tomli as tomllib
 
 from dhsim_tui.core.files.atomicfile import file_error as _error
 from dhsim_tui.core.files.atomicfile import read_file, remove_stale_temps, write_atomic
 from dhsim_tui.core.files.formats import IMPORT_SUFFIXES
+from dhsim_tui.core.files.robotschema import _defaults, robot_from_dict, robot_to_dict
 from dhsim_tui.core.files.tomledit import update_text
+from dhsim_tui.core.files.tomlparse import parse_toml
 from dhsim_tui.core.model.errors import DhsimError, RobotFileError
-from dhsim_tui.core.model.robot import Joint, Robot, Tool, default_limits
-from dhsim_tui.core.model.text import counted, printable, shortened
-from dhsim_tui.core.model.validation import check_choice, check_number
+from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.model.text import printable, shortened
 
-TOP_KEYS = (
-    "name",
-    "units",
-    "convention",
-    "base_height",
-    "base_z",
-    "base_x",
-    "base_xyz",
-    "base_rpy",
-    "tool",
-    "poses",
-    "joints",
-)
-JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max", "offset")
-JOINT_REQUIRED = ("theta", "d", "a", "alpha")
-TOOL_KEYS = ("xyz", "rpy")
 #: robot files larger than this are refused before parsing (a robot is < 10 kB)
 MAX_FILE_BYTES = 1_000_000
-#: a key path (``a.b.c = 1``, ``[a.b]``, ``[[a.b]]``, ``{ a.b = 1 }``) of more
-#: parts than this is refused before parsing: dhsim's files need at most 3
-#: (``poses."a b" = ...`` under a header); Python's parser takes time and
-#: memory growing with the square of the parts (20,000: 7 s and 1.6 GB)
-MAX_KEY_PARTS = 16
-#: a line longer than this is refused before parsing: the longest a robot
-#: file needs is a pose of 32 values or a name (at most 1,000 characters)
-MAX_LINE_CHARS = 10_000
 BOM = b"\xef\xbb\xbf"
 
 
@@ -100,161 +71,6 @@ class FileStamp:
 
 
 # -- reading ---------------------------------------------------------------------
-
-#: one part of a key: a bare word or a quoted string on one line. No nested
-#: repetition (Python 3.10 has no possessive quantifiers): inside a repeat,
-#: each alternative matches one character of a class of its own, so a failed
-#: match backs off in linear time, never exponential.
-_KEY_PART = r"""(?:[A-Za-z0-9_-]+|"(?:[^"\\\n]|\\.)*"|'[^'\n]*')"""
-#: what the scan passes over whole: comments and strings (dots in them are no keys)
-_SKIPPED = (
-    r"#[^\n]*"
-    r'|"""(?:[^"\\]|\\[\s\S]|"(?!""))*"{3,5}'
-    r"|'''(?:[^']|'(?!''))*'{3,5}"
-    r'|"(?:[^"\\\n]|\\.)*"'
-    r"|'[^'\n]*'"
-)
-#: a run of more than MAX_KEY_PARTS dotted parts, a comment or string passed
-#: over, or a quote that opens no string (the parser stops there: so does the scan).
-#: Values have runs of at most 2 (``1.5``, ``07:32:00.25``); only keys have more.
-_SCAN = re.compile(
-    rf"(?P<deep>(?<![A-Za-z0-9_.-]){_KEY_PART}(?:[ \t]*\.[ \t]*{_KEY_PART}){{{MAX_KEY_PARTS}}})"
-    rf"|{_SKIPPED}|(?P<stop>[\"'])"
-)
-
-
-def _hostile(text: str) -> str | None:
-    """What in ``text`` would make the TOML parser slow or greedy, naming the
-    line (None: nothing). Linear in the text: strings and comments are passed
-    over once, and a run of dotted parts is tried from its first part only
-    (from each part only when spaces stand around the dots: at most
-    MAX_KEY_PARTS tries of a part)."""
-    for match in _SCAN.finditer(text):
-        if match.lastgroup == "stop":
-            break
-        if match.lastgroup == "deep":
-            line = text.count("\n", 0, match.start()) + 1
-            return (
-                f"line {line}: a key path of more than {MAX_KEY_PARTS} dotted parts "
-                f"({shortened(match.group(), 40)}); a robot file's keys have 1 to 3"
-            )
-    for number, line in enumerate(text.split("\n"), start=1):
-        if len(line) > MAX_LINE_CHARS:
-            return (
-                f"line {number} is {len(line)} characters long; "
-                f"a robot file's lines have at most {MAX_LINE_CHARS}"
-            )
-    return None
-
-
-def parse_toml(text: str, source: str = "<robot>") -> dict[str, Any]:
-    """The TOML document in ``text`` (one byte order mark may start it),
-    refused before parsing when it holds what would make the parser hang
-    (:func:`_hostile`); every failure is a RobotFileError starting with ``source``."""
-    text = text.removeprefix("\ufeff")  # a byte order mark, as some editors write
-    if text.startswith("\ufeff"):
-        raise _error(f"{source}: starts with two byte order marks; a file may have one")
-    problem = _hostile(text)
-    if problem is not None:
-        raise _error(f"{source}: {problem}")
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _error(f"{source}: not valid TOML: {exc}") from None
-    except RecursionError:  # tomllib recurses into nested arrays and inline tables
-        raise _error(f"{source}: not valid TOML: nested too deeply") from None
-    except ValueError as exc:  # e.g. an integer of more than 4300 digits
-        raise _error(f"{source}: not valid TOML: {exc}") from None
-
-
-def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) -> None:
-    for key in table:
-        if key not in allowed:
-            close = difflib.get_close_matches(key, allowed, n=1)
-            hint = (
-                f" (did you mean {close[0]!r}?)" if close else f" (allowed: {', '.join(allowed)})"
-            )
-            raise DhsimError(printable(f"{where}{shortened(key)}: unknown key{hint}"))
-
-
-def _table(value: object, where: str) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise DhsimError(printable(f"{where}: expected a table"))
-    return value
-
-
-def _string(value: object, where: str) -> str:
-    if not isinstance(value, str):
-        raise DhsimError(f"{where}: expected a text string in quotes")
-    return value
-
-
-def _triple(value: object, where: str) -> tuple[float, float, float]:
-    if not isinstance(value, list) or len(value) != 3:
-        raise DhsimError(f"{where}: expected a list of 3 numbers, like [0.0, 0.0, 0.0]")
-    x, y, z = (check_number(v, f"{where}[{i}]") for i, v in enumerate(value, start=1))
-    return (x, y, z)
-
-
-def _joint(data: object, number: int, units: str) -> Joint:
-    where = f"joints[{number}]"
-    table = _table(data, where)
-    _check_keys(table, JOINT_KEYS, f"{where}.")
-    for key in JOINT_REQUIRED:
-        if key not in table:
-            raise DhsimError(f"{where}: missing key {key!r}")
-    joint_type = check_choice(
-        table.get("type", "revolute"), ("revolute", "prismatic"), f"{where}.type"
-    )
-    values = {key: check_number(table[key], f"{where}.{key}") for key in JOINT_REQUIRED}
-    low, high = default_limits(joint_type, units)
-    optional = {
-        key: check_number(table[key], f"{where}.{key}") if key in table else default
-        for key, default in (("min", low), ("max", high), ("offset", 0.0))
-    }
-    return Joint(type=joint_type, **values, **optional)  # type: ignore[arg-type]
-
-
-def robot_from_dict(data: Mapping[str, Any]) -> Robot:
-    """Build a robot from parsed TOML, checking every key; raises DhsimError."""
-    _check_keys(data, TOP_KEYS, "")
-    for key in ("name", "joints"):
-        if key not in data:
-            raise DhsimError(f"missing key {key!r}")
-    units = check_choice(data.get("units", "mm"), ("mm", "cm", "m", "in"), "units")
-    joints_data = data["joints"]
-    if not isinstance(joints_data, list):
-        raise DhsimError("joints: expected an array of tables, written [[joints]]")
-    joints = tuple(_joint(j, i, units) for i, j in enumerate(joints_data, start=1))
-    tool = Tool()
-    if "tool" in data:
-        tool_data = _table(data["tool"], "tool")
-        _check_keys(tool_data, TOOL_KEYS, "tool.")
-        tool = Tool(
-            xyz=_triple(tool_data.get("xyz", [0.0, 0.0, 0.0]), "tool.xyz"),
-            rpy=_triple(tool_data.get("rpy", [0.0, 0.0, 0.0]), "tool.rpy"),
-        )
-    poses: list[tuple[str, tuple[float, ...]]] = []
-    for name, values in _table(data.get("poses", {}), "poses").items():
-        where = printable(f"poses.{shortened(name)}")
-        if not isinstance(values, list):
-            raise DhsimError(f"{where}: expected a list of {counted(len(joints), 'number')}")
-        numbers = tuple(check_number(v, f"{where}[{i}]") for i, v in enumerate(values, start=1))
-        poses.append((name, numbers))
-    base_height = data.get("base_height", 0.0)
-    return Robot(
-        name=_string(data["name"], "name"),
-        joints=joints,
-        units=units,
-        convention=_string(data.get("convention", "standard"), "convention"),
-        base_height=check_number(base_height, "base_height"),
-        base_z=_string(data.get("base_z", "+z"), "base_z"),
-        base_x=_string(data.get("base_x", "+x"), "base_x"),
-        base_xyz=_triple(data.get("base_xyz", [0.0, 0.0, 0.0]), "base_xyz"),
-        base_rpy=_triple(data.get("base_rpy", [0.0, 0.0, 0.0]), "base_rpy"),
-        tool=tool,
-        poses=tuple(poses),
-    )
 
 
 def loads(text: str, source: str = "<robot>") -> Robot:
@@ -348,63 +164,6 @@ def read_stamp(path: str | os.PathLike[str]) -> FileStamp | None:
 
 
 # -- writing ---------------------------------------------------------------------
-
-
-def robot_to_dict(robot: Robot, *, full: bool = False) -> dict[str, Any]:
-    """The TOML document for a robot; every field written, so it reads back equal.
-    ``full`` also writes an identity tool and an empty poses table."""
-    data: dict[str, Any] = {
-        "name": robot.name,
-        "units": robot.units,
-        "convention": robot.convention,
-        "base_height": robot.base_height,
-        "base_z": robot.base_z,
-        "base_x": robot.base_x,
-    }
-    if full or not robot.base_is_shorthand:
-        data["base_xyz"] = _floats(robot.base_xyz)
-        data["base_rpy"] = _floats(robot.base_rpy)
-    if full or not robot.tool.is_identity:
-        data["tool"] = {"xyz": _floats(robot.tool.xyz), "rpy": _floats(robot.tool.rpy)}
-    if full or robot.poses:
-        data["poses"] = {name: _floats(values) for name, values in robot.poses}
-    data["joints"] = [
-        {"type": j.type} | dict(zip(JOINT_KEYS[1:7], _floats(_values(j)), strict=True))
-        for j in robot.joints
-    ]
-    for row, j in zip(data["joints"], robot.joints, strict=True):
-        if full or j.offset:
-            row["offset"] = float(j.offset)
-    return data
-
-
-def _floats(values) -> list[float]:
-    return [float(v) for v in values]
-
-
-def _values(joint: Joint) -> tuple[float, ...]:
-    return (joint.theta, joint.d, joint.a, joint.alpha, joint.min, joint.max)
-
-
-def _defaults(robot: Robot) -> dict[str, Any]:
-    """What a file may leave out, for this robot (limits depend on type and unit)."""
-    return {
-        "units": "mm",
-        "convention": "standard",
-        "base_height": 0.0,
-        "base_z": "+z",
-        "base_x": "+x",
-        "base_xyz": [0.0, 0.0, 0.0],
-        "base_rpy": [0.0, 0.0, 0.0],
-        "tool": {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]},
-        "poses": {},
-        "joints": [
-            dict(zip(("min", "max"), default_limits(j.type, robot.units), strict=True))
-            | {"type": "revolute", "offset": 0.0}
-            for j in robot.joints
-        ],
-    }
-
 
 #: an array of numbers tomli_w wrote one item per line
 _NUMBER_COLUMN = re.compile(r"\[\n((?:    [-+0-9.eE]+(?:inf|nan)?,\n)+)\]")

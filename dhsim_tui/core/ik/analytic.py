@@ -55,7 +55,7 @@ branches of every step always get different words:
   wrist in frame 3 ≥ 0 for "n" and, the Puma's α4 being +90°, sets joint 5
   to minus it, which is this rule; read from the joints' axes rather than
   from the sign of the table's x4, it words the Puma's standard and modified
-  tables alike: tests/test_ik_labels_rtb.py.)
+  tables alike: tests/core/test_ik_labels_rtb.py.)
 """
 
 from __future__ import annotations

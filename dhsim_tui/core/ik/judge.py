@@ -14,7 +14,7 @@ import numpy as np
 
 from dhsim_tui.core.analysis.jacobian import jacobian_from_frames
 from dhsim_tui.core.analysis.workspace import reach
-from dhsim_tui.core.ik.numerical import rotation_error
+from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.model.robot import Robot
 
 #: a returned solution's largest position error (fraction of the reach) and

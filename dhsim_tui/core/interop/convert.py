@@ -26,7 +26,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from dhsim_tui.core.interop.dh_extract import tool_link
+from dhsim_tui.core.interop.dh_chain import tool_link
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.orientation import base_rotation, rotx, rpy_angles, rpy_matrix
 from dhsim_tui.core.model.robot import CONVENTIONS, Robot, Tool

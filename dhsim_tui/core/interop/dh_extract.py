@@ -45,129 +45,39 @@ Choices where geometry leaves freedom (all deterministic):
   where a D-H row can put it, as for a planar 2R arm's hand).
 
 :func:`extract` with ``convention="modified"`` returns the same frames in the
-modified convention (:func:`convert`): row i's ``a``/``alpha`` then hold
-a_{i-1}/alpha_{i-1} (the reference's "(alpha_{i-1}, a_{i-1}, d_i)" rows), and
-row 1's are 0, since frame 0 lies on joint 1's axis.
+modified convention (:func:`~dhsim_tui.core.interop.dh_chain.convert`): row
+i's ``a``/``alpha`` then hold a_{i-1}/alpha_{i-1} (the reference's
+"(alpha_{i-1}, a_{i-1}, d_i)" rows), and row 1's are 0, since frame 0 lies on
+joint 1's axis. The rows and chain it returns, and that conversion, are
+:mod:`dhsim_tui.core.interop.dh_chain`'s.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Collection, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
+from dhsim_tui.core.interop.dh_chain import (
+    CONVENTIONS,
+    KINDS,
+    DHChain,
+    DHRow,
+    _inverse,
+    _rigid,
+    _wrap,
+    convert,
+    link_matrix,
+)
 from dhsim_tui.core.model.errors import DhsimError
 
-CONVENTIONS = ("standard", "modified")
-KINDS = ("revolute", "prismatic")
 #: consecutive axes count as parallel when the sine of their angle is below this
 PARALLEL_TOL = 1e-12
 #: lengths below this times the chain's size count as zero (intersecting, on-axis)
 LENGTH_TOL = 1e-12
-#: modified → standard takes Tx(a)·Rx(alpha) out of a tool this close to having
-#: one (looser than the tolerances above, so what they leave in a tool still
-#: counts; the forward kinematics stay exact either way)
-PEEL_TOL = 1e-9
 #: angles this close to 0 are 0 (rounding noise)
 ZERO_ANGLE = 1e-14
-#: a rotation block further than this from orthonormal is not a rigid transform
-RIGID_TOL = 1e-9
-
-
-@dataclass(frozen=True)
-class DHRow:
-    """One joint's D-H row at q = 0, angles in radians.
-
-    ``theta``, ``d``, ``a``, ``alpha`` are the table at q = 0; ``offset`` is
-    the variable's value there (``theta`` for a revolute joint, ``d`` for a
-    prismatic one), so the D-H variable is ``q + offset``. In a modified
-    chain ``a`` and ``alpha`` are a_{i-1} and alpha_{i-1}.
-    """
-
-    kind: str
-    theta: float
-    d: float
-    a: float
-    alpha: float
-    offset: float
-
-    def __post_init__(self) -> None:
-        if self.kind not in KINDS:
-            raise DhsimError(f"joint kind {self.kind!r}: expected 'revolute' or 'prismatic'")
-        values = (self.theta, self.d, self.a, self.alpha, self.offset)
-        if not all(math.isfinite(v) for v in values):
-            raise DhsimError(f"D-H row {values}: every number must be finite")
-        home = self.theta if self.kind == "revolute" else self.d
-        if self.offset != home:
-            name = "theta" if self.kind == "revolute" else "d"
-            raise DhsimError(
-                f"{self.kind} D-H row: offset {self.offset!r} must equal its {name} {home!r}"
-            )
-
-    def variables(self, q: float) -> tuple[float, float]:
-        """(theta, d) with the joint at value q."""
-        if self.kind == "revolute":
-            return q + self.offset, self.d
-        return self.theta, q + self.offset
-
-
-@dataclass(frozen=True, eq=False)
-class DHChain:
-    """An arm as ``base · T_1(q_1) ··· T_n(q_n) · tool`` in one convention."""
-
-    convention: str
-    base: np.ndarray
-    rows: tuple[DHRow, ...]
-    tool: np.ndarray
-
-    def __post_init__(self) -> None:
-        if self.convention not in CONVENTIONS:
-            raise DhsimError(
-                f"D-H convention {self.convention!r}: expected 'standard' or 'modified'"
-            )
-        object.__setattr__(self, "base", _rigid(self.base, "base"))
-        object.__setattr__(self, "tool", _rigid(self.tool, "tool"))
-        object.__setattr__(self, "rows", tuple(self.rows))
-
-    def frames(self, q: Sequence[float]) -> list[np.ndarray]:
-        """World frames 0..n: ``base · T_1 ··· T_i`` (without the tool)."""
-        q = _joint_values(q, len(self.rows))
-        current = self.base.copy()
-        out = [current]
-        for row, qi in zip(self.rows, q, strict=True):
-            theta, d = row.variables(qi)
-            current = current @ link_matrix(self.convention, theta, d, row.a, row.alpha)
-            out.append(current)
-        return out
-
-    def fk(self, q: Sequence[float]) -> np.ndarray:
-        """The tip's 4×4 pose in the base's parent frame at joint values q."""
-        return self.frames(q)[-1] @ self.tool
-
-
-def link_matrix(convention: str, theta: float, d: float, a: float, alpha: float) -> np.ndarray:
-    """One row's transform: standard Rz·Tz·Tx·Rx, modified Rx·Tx·Rz·Tz."""
-    ct, st = math.cos(theta), math.sin(theta)
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    if convention == "standard":
-        return np.array(
-            [
-                [ct, -st * ca, st * sa, a * ct],
-                [st, ct * ca, -ct * sa, a * st],
-                [0.0, sa, ca, d],
-                [0.0, 0.0, 0.0, 1.0],
-            ]
-        )
-    return np.array(
-        [
-            [ct, -st, 0.0, a],
-            [st * ca, ct * ca, -sa, -d * sa],
-            [st * sa, ct * sa, ca, d * ca],
-            [0.0, 0.0, 0.0, 1.0],
-        ]
-    )
 
 
 def extract(
@@ -260,48 +170,6 @@ def _tol(index: int, forced: set[int], parallel_tol: float) -> float:
     return math.inf if index + 1 in forced else parallel_tol
 
 
-def convert(chain: DHChain, convention: str) -> DHChain:
-    """The same arm in ``convention``, with the same frames where both have them.
-
-    Standard → modified moves the last row's Tx(a_n)·Rx(alpha_n) into the
-    tool (row 1 gets a_0 = alpha_0 = 0); modified → standard moves the first
-    row's Rx(alpha_0)·Tx(a_0) into the base, and takes the last row's a_n and
-    alpha_n back out of the tool when it begins with Tx(a)·Rx(alpha) followed
-    by a screw along z (its z axis crosses frame n's x axis at a right angle:
-    what standard → modified puts there), else they are 0. So standard →
-    modified → standard gives back the same table, and every conversion the
-    same forward kinematics.
-    """
-    if convention not in CONVENTIONS:
-        raise DhsimError(f"D-H convention {convention!r}: expected 'standard' or 'modified'")
-    rows = chain.rows
-    if convention == chain.convention or not rows:
-        return DHChain(convention, chain.base, rows, chain.tool)
-    # (a, alpha) pairs shift by one row; Tx(a) and Rx(alpha) commute
-    if convention == "modified":
-        pairs = [(0.0, 0.0)] + [(r.a, r.alpha) for r in rows[:-1]]
-        base = chain.base
-        tool = link_matrix("standard", 0.0, 0.0, rows[-1].a, rows[-1].alpha) @ chain.tool
-    else:
-        size = max(
-            [
-                1.0,
-                float(np.linalg.norm(chain.base[:3, 3])),
-                float(np.linalg.norm(chain.tool[:3, 3])),
-            ]
-            + [abs(r.d) + abs(r.a) for r in rows]
-        )
-        a_n, alpha_n = tool_link(chain.tool, PEEL_TOL * size)
-        pairs = [(r.a, r.alpha) for r in rows[1:]] + [(a_n, alpha_n)]
-        base = chain.base @ link_matrix("modified", 0.0, 0.0, rows[0].a, rows[0].alpha)
-        tool = _inverse(link_matrix("standard", 0.0, 0.0, a_n, alpha_n)) @ chain.tool
-    new_rows = tuple(
-        DHRow(r.kind, r.theta, r.d, a, alpha, r.offset)
-        for r, (a, alpha) in zip(rows, pairs, strict=True)
-    )
-    return DHChain(convention, base, new_rows, tool)
-
-
 # -- geometry ---------------------------------------------------------------------------
 
 
@@ -349,22 +217,9 @@ def _next_link(
     return _angle(x_prev, x, z), d, a, alpha
 
 
-def tool_link(tool: np.ndarray, tol: float) -> tuple[float, float]:
-    """(a, alpha) with ``tool = Tx(a)·Rx(alpha)·Tz(d)·Rz(theta)``, or (0, 0)."""
-    z, o = tool[:3, 2], tool[:3, 3]
-    if abs(float(z[0])) > PEEL_TOL or abs(float(o[1] * z[2] - o[2] * z[1])) > tol:
-        return 0.0, 0.0
-    return float(o[0]), _wrap(math.atan2(-float(z[1]), float(z[2])))
-
-
 def _angle(x_from: np.ndarray, x_to: np.ndarray, z: np.ndarray) -> float:
     """The angle about z from x_from to x_to (both perpendicular to z)."""
     return _wrap(math.atan2(float(np.cross(x_from, x_to) @ z), float(x_from @ x_to)))
-
-
-def _wrap(angle: float) -> float:
-    """-π (from a -0.0) as π, so angles lie in (-π, π]."""
-    return math.pi if angle <= -math.pi else angle
 
 
 def _foot(point: np.ndarray, p: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -380,13 +235,6 @@ def _perpendicular(v: np.ndarray, z: np.ndarray, fallback: np.ndarray) -> np.nda
             out = out - float(out @ z) * z  # twice, for a clean right angle
             return out / np.linalg.norm(out)
     raise AssertionError("two perpendicular vectors cannot both be parallel to z")
-
-
-def _inverse(t: np.ndarray) -> np.ndarray:
-    out = np.eye(4)
-    out[:3, :3] = t[:3, :3].T
-    out[:3, 3] = -t[:3, :3].T @ t[:3, 3]
-    return out
 
 
 # -- checking the input -----------------------------------------------------------------
@@ -413,27 +261,3 @@ def _axes(
             raise DhsimError(f"joint {i}: its axis direction is zero")
         out.append((kind, p, w / length))
     return out
-
-
-def _joint_values(q: Sequence[float], n: int) -> list[float]:
-    values = [float(v) for v in np.asarray(q, dtype=float).reshape(-1)]
-    if len(values) != n:
-        raise DhsimError(f"expected {n} joint values, got {len(values)}")
-    if not all(math.isfinite(v) for v in values):
-        raise DhsimError(f"joint values {values}: every value must be finite")
-    return values
-
-
-def _rigid(matrix: np.ndarray, name: str) -> np.ndarray:
-    m = np.array(matrix, dtype=float)
-    if m.shape != (4, 4) or not np.all(np.isfinite(m)):
-        raise DhsimError(f"{name}: expected a finite 4×4 transform")
-    r = m[:3, :3]
-    if (
-        not np.allclose(m[3], [0.0, 0.0, 0.0, 1.0], rtol=0.0, atol=RIGID_TOL)
-        or not np.allclose(r.T @ r, np.eye(3), rtol=0.0, atol=RIGID_TOL)
-        or np.linalg.det(r) < 0
-    ):
-        raise DhsimError(f"{name}: not a rigid transform (rotation and translation)")
-    m.setflags(write=False)
-    return m

@@ -31,7 +31,7 @@ Its JSON object is exactly what ``dhsim export --format json`` writes for the
 robot (:func:`dhsim_fields`), on one line, with any ``--`` in a string written
 ``-\\u002d`` (a comment may not hold two dashes) and U+FFFE/U+FFFF as
 ``\\ufffe``/``\\uffff``. ``dhsim import`` gives the very robot back from it
-when the URDF's joints still match it (:mod:`dhsim_tui.core.interop.urdf_import`).
+when the URDF's joints still match it (:mod:`dhsim_tui.core.interop.urdf_restore`).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ import numpy as np
 
 from dhsim_tui.core.analysis.workspace import reach
 from dhsim_tui.core.interop.convert import convert
-from dhsim_tui.core.interop.urdf import DHSIM_COMMENT
+from dhsim_tui.core.interop.urdf_xml import DHSIM_COMMENT
 from dhsim_tui.core.model.kinematics import robot_base
 from dhsim_tui.core.model.orientation import cos_sin, rpy_angles
 from dhsim_tui.core.model.robot import Joint, Robot

@@ -11,10 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dhsim_tui.core.analysis.jacobian import controllable_rows, jacobian, length_scale, normalised
-from dhsim_tui.core.analysis.workspace import reach
+from dhsim_tui.core.analysis.jacobian import controllable_rows, jacobian, normalised
+from dhsim_tui.core.analysis.workspace import length_scale, reach
 from dhsim_tui.core.ik import reasons as ik_reasons
-from dhsim_tui.core.ik.numerical import POSITION, IKResult, rotation_error, solve
+from dhsim_tui.core.ik.numerical import POSITION, IKResult, solve
+from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.model.orientation import rotx, roty, rotz
 from dhsim_tui.core.model.robot import Robot, mm_to_unit
 

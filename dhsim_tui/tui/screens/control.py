@@ -1,79 +1,90 @@
 """The control screen: step joints with the keyboard, read the pose, see the arm.
 
-Data flows one way: a key changes the joint vector; the screen asks the core
-for the frames and the read-out, asks the scene layer for the projected
-views, and hands the results to the widgets, which only draw.
+Data flows one way: the panels post what a key or the mouse asks for; the
+screen, which holds the robot and the joint values ``q``, answers by asking
+the core, and hands the frames, read-outs and projected views back to the
+widgets, which only draw.
 
+Joint or Cartesian jogging is which panel has the focus (``c`` moves it).
 Keys change the state at once (every key counts, none is dropped), but the
 drawing is coalesced: a change marks the screen dirty and queues one redraw,
 at most one a frame (1/60 s), so a burst of auto-repeat is drawn a few times,
 not once per key, and never builds a backlog.
+
+(About 450 lines: it answers every panel's messages and runs the three
+background jobs, b's search, W's sampling and smooth moves; each is a few
+lines of glue over the core, and split further one flow would be spread
+over several files.)
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from time import monotonic
 
+import numpy as np
 from rich.text import Text
+from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
-from textual.events import Resize
+from textual.events import DescendantFocus, Resize
+from textual.message import Message
 from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
+from textual.worker import get_current_worker
 
+from dhsim_tui.core.analysis import workspace
 from dhsim_tui.core.analysis.jacobian import dexterity, jacobian_from_frames
+from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.kinematics import read_out
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.validation import fmt
+from dhsim_tui.core.motion.branches import (
+    SEARCH_ERRORS,
+    BranchCache,
+    BranchCycle,
+    branch_key,
+)
 from dhsim_tui.core.motion.jog import (
     DEFAULT_STEP_LEVEL,
     REVOLUTE_STEPS_DEG,
-    WORLD,
+    TOOL,
+    cartesian_move,
     cartesian_step_size,
+    move_pose,
+    row_name,
     set_joint,
     snapped,
     step_size,
 )
+from dhsim_tui.core.motion.smooth import SmoothMove
 from dhsim_tui.scene import build_wireframe
 from dhsim_tui.terminal.charset import shown
 from dhsim_tui.terminal.typeahead import FRAME, draw_later
-from dhsim_tui.tui.screens.control_branches import (
-    BRANCH_CACHE,
-    SEARCH_ERRORS,
-    BranchCycle,
-    BranchCycling,
+from dhsim_tui.tui.flows.values import (
+    PATH_WIDTH,
+    ask_cartesian_step,
+    ask_joint_value,
+    ask_pose_name,
+    shorten_path_in,
 )
-from dhsim_tui.tui.screens.control_cartesian import CartesianJogging
-from dhsim_tui.tui.screens.control_cloud import CLOUD_POINTS, WorkspaceCloud
-from dhsim_tui.tui.screens.control_entry import ValueFlows
+from dhsim_tui.tui.keys import help_rows
+from dhsim_tui.tui.screens.control_commands import control_commands
 from dhsim_tui.tui.screens.control_keys import (
-    CARTESIAN_ACTIONS,
     CONTROL_BINDINGS,
     HELP_NOTES,
-    JOINT_ACTIONS,
     KeyHints,
-    help_rows,
+    bindings_in_effect,
 )
-from dhsim_tui.tui.screens.control_views import ViewControls
+from dhsim_tui.tui.screens.dialogs import short_path
 from dhsim_tui.tui.screens.help import HelpScreen
-from dhsim_tui.tui.screens.motion import SmoothMotion
-from dhsim_tui.tui.widgets.cartesian_panel import TITLES as CARTESIAN_TITLES
 from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.tui.widgets.pose_panel import ALL_READOUTS, READOUTS, PosePanel
+from dhsim_tui.tui.widgets.stepping import StepSizeRequested
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel, is_wide
-
-__all__ = [
-    "BRANCH_CACHE",
-    "CLOUD_POINTS",
-    "MIN_SIZE",
-    "SEARCH_ERRORS",
-    "TALL_FOR_BOTH",
-    "BranchCycle",
-    "ControlScreen",
-]
 
 #: below this the screen shows a message instead of a layout
 MIN_SIZE = (60, 18)
@@ -82,67 +93,66 @@ TALL_FOR_BOTH = 32
 #: from this height on the pose panel shows every read-out at once (OAT,
 #: roll-pitch-yaw and the 4×4 transform): a tall side panel has the room
 TALL_FOR_ALL_READOUTS = 44
+#: how many points the workspace cloud (W) has
+CLOUD_POINTS = 20000
 
 
-class ControlScreen(
-    CartesianJogging,
-    BranchCycling,
-    WorkspaceCloud,
-    ViewControls,
-    ValueFlows,
-    SmoothMotion,
-    Screen,
-):
-    """Joint stepping, home, poses, read-outs and the three views.
+# -- what the background jobs post ------------------------------------------------
+@dataclass
+class BranchesFound(Message):
+    """b's search ended: the solutions for the pose the arm had at ``q``."""
 
-    | Key | Action |
-    | :- | :- |
-    | up / down | Select a joint (Cartesian: an axis) |
-    | left / right | Step the joint, or move the tool (shift: ten steps) |
-    | [ / ] | Smaller / larger step |
-    | enter | Type the joint's exact value (Cartesian: a target) |
-    | h / home | Every joint home (the D-H table's values) |
-    | p | Next named pose |
-    | v | Read-out: OAT, roll-pitch-yaw, 4×4 transform |
-    | tab / 1 2 3 4 | Select the top, front, side or 3-D view |
-    | z | Maximise the selected view, and back |
-    | + / - / 0 | Zoom in, out about the arm; the whole work area |
-    | a d / w s | Orbit the 3-D view (azimuth / elevation) |
-    | c | Joint <-> Cartesian jogging (X, Y, Z, turns about x, y, z) |
-    | f | Cartesian: WORLD <-> TOOL frame |
-    | b | The next IK branch for this tool pose (the tool stays) |
-    | W | Workspace cloud on / off |
-    | P | Save the current joints as a named pose |
-    | m | Smooth motion on or off (the footer shows which) |
-    | escape | Stop a smooth move |
-    | e | Edit the robot in a table |
-    | ? | Help |
-    | q | Quit |
+    q: tuple[float, ...]
+    key: bytes
+    found: object
+
+
+@dataclass
+class BranchesFailed(Message):
+    reason: str
+
+
+@dataclass
+class CloudSampled(Message):
+    """W's sampling ended: positions the tool can reach."""
+
+    points: np.ndarray
+
+
+@dataclass
+class CloudFailed(Message):
+    reason: str
+
+
+class ControlScreen(Screen):
+    """Joint stepping, home, poses, read-outs and the four views.
+
+    The keys are the focused panel's (arrows, ``[ ]``, enter; ``f`` in
+    Cartesian jogging), the views panel's (handed on) and this screen's
+    (``CONTROL_BINDINGS``); ``?`` lists the ones in effect.
     """
 
     BINDINGS = CONTROL_BINDINGS
+    AUTO_FOCUS = "#joints"
 
     q: reactive[tuple[float, ...]] = reactive(tuple, init=False, repaint=False)
-    selected: reactive[int] = reactive(0, init=False, repaint=False)
     step_level: reactive[int] = reactive(DEFAULT_STEP_LEVEL, init=False, repaint=False)
     readout: reactive[str] = reactive("oat", init=False, repaint=False)
-    cartesian: reactive[bool] = reactive(False, init=False, repaint=False)
 
     def __init__(self, robot: Robot, renderer: str = "plotext", animate: bool = True) -> None:
         super().__init__()
         self.robot = robot
         self.renderer = renderer
         self.animate = animate
-        self.cartesian_row = 0
         self._commanded = None  # the Cartesian target while jogging
-        self.frame = WORLD  # Cartesian jogging's frame (f)
         self._branches: BranchCycle | None = None  # b: the solutions cycled through
-        self._branch_cache: dict[bytes, object] = {}
+        self._branch_cache = BranchCache()
         self.finding_branches = False  # a worker is looking for them
         self._branch_presses = 0  # b pressed while it looks
         self.cloud_state = "off"  # W: "off", "computing" or "on"
         self._cloud_points = None  # the workspace cloud, once sampled
-        self._animation = None
+        self._move: SmoothMove | None = None  # the smooth move under way
+        self._ticker = None
         self._pose_cursor = -1
         self._said: tuple[str, bool] = ("", False)
         self._ready = False
@@ -179,9 +189,7 @@ class ControlScreen(
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
         self._cartesian_panel = self.query_one(CartesianPanel)
-        self._cartesian_panel.border_title = CARTESIAN_TITLES[self.frame]
         self._ready = True
-        self._joints.select(self.selected)
         self._update_step_caption()
         self._apply_size(self.app.size.width, self.app.size.height)
         self._refresh_pose()
@@ -208,6 +216,11 @@ class ControlScreen(
                     self.app,
                 )
             )
+
+    @property
+    def cartesian(self) -> bool:
+        """Cartesian jogging: the Cartesian panel has the focus."""
+        return self._ready and self.focused is self._cartesian_panel
 
     # -- the one-way flow: q -> core -> scene -> widgets -----------------------
     def _invalidate(self) -> None:
@@ -263,14 +276,8 @@ class ControlScreen(
             self.pose, readout, self.robot.units, self.dexterity, self.warnings, branch
         )
         if self.cartesian:
-            self._cartesian_panel.show(
-                self.pose.xyz,
-                self.pose.rpy,
-                self.cartesian_row,
-                self.robot.units,
-                self.frame,
-                [self.pose.matrix[:3, i] for i in range(3)],  # the tool's x, y, z
-            )
+            tool_axes = [self.pose.matrix[:3, i] for i in range(3)]
+            self._cartesian_panel.show(self.pose.xyz, self.pose.rpy, self.robot.units, tool_axes)
 
     def watch_q(self) -> None:
         self._commanded = None  # any other move ends a Cartesian run (_jog sets it again)
@@ -278,45 +285,23 @@ class ControlScreen(
         self._invalidate()
 
     def watch_readout(self) -> None:
-        if not self._ready:
-            return
-        self._show_now()
-
-    def watch_cartesian(self) -> None:
-        if not self._ready:
-            return
-        self.set_class(self.cartesian, "-cartesian")
-        # one ▶ on screen: the Cartesian row's, or the joint's
-        self._joints.select(-1 if self.cartesian else self.selected)
-        self._update_step_caption()
-        self._show_now()
-        self.refresh_bindings()  # the arrows' labels in the footer
-
-    def watch_selected(self) -> None:
-        if not self._ready:
-            return
-        self._joints.select(-1 if self.cartesian else self.selected)
-        self._update_step_caption()
+        if self._ready:
+            self._show_now()
 
     def watch_step_level(self) -> None:
-        if not self._ready:
-            return
-        self._update_step_caption()
-
-    def on_views_panel_maximised(self, message: ViewsPanel.Maximised) -> None:
-        """The selected view over the whole screen: the side panel makes way."""
-        self.set_class(message.maximised, "-max")
+        if self._ready:
+            self._update_step_caption()
 
     def _update_step_caption(self) -> None:
         if self.cartesian:
-            row = self.cartesian_row
+            row = self._cartesian_panel.row
             unit = self.robot.units if row < 3 else "deg"
             step = cartesian_step_size(self.robot, row, self.step_level)
             self._cartesian_panel.border_subtitle = Text(f"step {fmt(step)} {unit}  [ ]")
             return
-        joint = self.robot.joints[self.selected]
-        unit = joint.unit(self.robot.units)
-        step = step_size(self.robot, self.selected, self.step_level)
+        index = self._joints.selected
+        unit = self.robot.joints[index].unit(self.robot.units)
+        step = step_size(self.robot, index, self.step_level)
         self._joints.border_subtitle = Text(f"step {fmt(step)} {unit}  [ ]")
 
     def say(self, message: str, error: bool = False) -> None:
@@ -329,79 +314,57 @@ class ControlScreen(
         self._said = (message, error)
         if not self._ready:  # said before the screen is up (after a reload): shown at mount
             return
-        found = self.query("#status").results(Static)
-        status = next(found, None)
+        status = next(self.query("#status").results(Static), None)
         if status is None:  # a late worker's word after the screen was taken down
             return
         status.set_class(error, "-error")
         status.update(Text(message), layout=False)
 
-    # -- actions ----------------------------------------------------------------
+    # -- which panel jogs: the focus ----------------------------------------------
+    def on_descendant_focus(self, event: DescendantFocus) -> None:
+        """The panel with the focus jogs (c, or a click on it): the layout,
+        the step caption, the pose shown and the keys follow."""
+        if event.widget not in (self._joints, self._cartesian_panel):
+            return
+        self.set_class(self.cartesian, "-cartesian")
+        self._update_step_caption()
+        self._show_now()
+        self.refresh_bindings()  # c's label in the footer
+        self.query_one(KeyHints).refresh_hints()
+
+    def action_switch(self, to: str) -> None:
+        """c: Cartesian jogging, or back to the joints (``to``)."""
+        if to == "cartesian":
+            self.add_class("-cartesian")  # shown first: a hidden panel takes no focus
+            self._cartesian_panel.focus()
+            frame = self._cartesian_panel.frame.upper()
+            self.say(f"Cartesian jogging, {frame} frame (f): ↑↓ axis, ←→ move the tool")
+        else:
+            self._joints.focus()
+            self.say("joint jogging")
+
+    # -- keys -------------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        """Grey out keys that can't do anything for this robot (or yet)."""
+        """Hide or grey out keys that can't do anything for this robot (or yet)."""
         if not self._ready:
             return False
-        # False hides a binding and lets the key fall through to the next one:
-        # the arrows are the joints' in joint mode, the tool's in Cartesian mode
-        if action in JOINT_ACTIONS:
-            return not self.cartesian
-        if action in CARTESIAN_ACTIONS:
-            return self.cartesian
         if action == "toggle_motion":  # the label shows the state motion is in
             return bool(parameters and parameters[0]) == self.animate
-        if action == "cartesian":  # the label names the mode c switches to
-            return bool(parameters and parameters[0]) == self.cartesian
+        if action == "switch":  # c's label names the mode it switches to
+            return (parameters[0] == "cartesian") != self.cartesian
         if action == "next_pose" and not self.robot.pose_names:
             return None
-        if action == "frame":  # Cartesian only; the label names the frame f switches to
-            return self.cartesian and bool(parameters) and parameters[0] != self.frame
         return True
 
-    def action_select(self, delta: int) -> None:
-        self.selected = (self.selected + delta) % self.robot.dof
-
-    def action_step(self, multiple: int) -> None:
-        self._interrupt()
-        index = self.selected
-        delta = multiple * step_size(self.robot, index, self.step_level)
-        self._move_to(index, self.q[index] + delta)
-
-    def _move_to(self, index: int, value: float) -> None:
-        joint = self.robot.joints[index]
-        label = joint.label(index + 1)
-        unit = joint.unit(self.robot.units)
-        move = set_joint(self.robot, self.q, index, value)
-        if move.limit is not None:
-            bound = joint.min if move.limit == "min" else joint.max
-            verb = "is at" if not move.moved else "stopped at"
-            self.say(f"{label} {verb} its {move.limit} limit, {fmt(bound)} {unit}", error=True)
-        else:
-            self.say("")
-        if move.moved:
-            self.q = move.q
-
-    # -- the mouse on the joints: the rows ask, the screen decides -------------
-    def on_joint_row_picked(self, message: JointRow.Picked) -> None:
-        """A click selects the joint (back in joint jogging); on its bar, or
-        dragged along it, the joint goes to the value under the pointer,
-        rounded to the current step and kept within its limits."""
-        index = message.row.index
-        if self.cartesian:
-            self.cartesian = False
-        self.selected = index
-        if message.value is not None:
-            self._interrupt()
-            self._move_to(index, snapped(self.robot, index, message.value, self.step_level))
-
-    def on_joint_row_wheeled(self, message: JointRow.Wheeled) -> None:
-        """The wheel over a joint steps it (and selects it)."""
-        if self.cartesian:
-            self.cartesian = False
-        self.selected = message.row.index
-        self.action_step(message.steps)
+    def action_forward(self, target: str, action: str, parameters: tuple = ()) -> None:
+        """A key of a widget that takes no focus (the views panel's)."""
+        getattr(self.query_one(f"#{target}"), f"action_{action}")(*parameters)
 
     def action_step_size(self, delta: int) -> None:
         self.step_level = max(0, min(len(REVOLUTE_STEPS_DEG) - 1, self.step_level + delta))
+
+    def on_step_size_requested(self, message: StepSizeRequested) -> None:
+        self.action_step_size(message.delta)
 
     def action_home(self) -> None:
         self._pose_cursor = -1
@@ -431,4 +394,315 @@ class ControlScreen(
         self.app.action_edit()  # type: ignore[attr-defined]
 
     def action_help(self) -> None:
-        self.app.push_screen(HelpScreen("Keys", help_rows(self.robot), HELP_NOTES))
+        names = printable(", ".join(self.robot.pose_names))
+        more = {"robot.pose": f": {names}" if names else " (this robot has none)"}
+        bindings = bindings_in_effect(self)
+        keys = {b.key for b in bindings}  # and Cartesian jogging's own (f), from joint jogging
+        bindings += [b for b in self._cartesian_panel.BINDINGS if b.key not in keys]
+        rows = help_rows(bindings, more)
+        self.app.push_screen(HelpScreen("Keys", rows, HELP_NOTES))
+
+    def palette_commands(self) -> list:
+        """The command palette's commands for this screen as it is now."""
+        return list(control_commands(self.app, self))
+
+    # -- joints: what the joints panel asks ------------------------------------------
+    def on_joint_panel_selected(self, message: JointPanel.Selected) -> None:
+        self._update_step_caption()
+
+    def on_joint_panel_step_requested(self, message: JointPanel.StepRequested) -> None:
+        self._interrupt()
+        index = message.index
+        delta = message.steps * step_size(self.robot, index, self.step_level)
+        self._move_to(index, self.q[index] + delta)
+
+    def on_joint_panel_value_requested(self, message: JointPanel.ValueRequested) -> None:
+        """A click or drag on a bar: the value under the pointer, rounded to
+        the current step and kept within the joint's limits."""
+        self._interrupt()
+        index = message.index
+        self._move_to(index, snapped(self.robot, index, message.value, self.step_level))
+
+    def on_joint_panel_value_asked(self, message: JointPanel.ValueAsked) -> None:
+        self._interrupt()  # now, not when the dialog's worker gets to run
+        self._ask_joint(message.index)
+
+    @work(exclusive=True, group="modal")
+    async def _ask_joint(self, index: int) -> None:
+        value = await ask_joint_value(self.app, self.robot, index, self.q[index])
+        if value is not None:
+            self._move_to(index, value)
+
+    def _move_to(self, index: int, value: float) -> None:
+        joint = self.robot.joints[index]
+        label = joint.label(index + 1)
+        unit = joint.unit(self.robot.units)
+        move = set_joint(self.robot, self.q, index, value)
+        if move.limit is not None:
+            bound = joint.min if move.limit == "min" else joint.max
+            verb = "is at" if not move.moved else "stopped at"
+            self.say(f"{label} {verb} its {move.limit} limit, {fmt(bound)} {unit}", error=True)
+        else:
+            self.say("")
+        if move.moved:
+            self.q = move.q
+
+    # -- Cartesian: what the Cartesian panel asks -------------------------------------
+    def on_cartesian_panel_row_selected(self, message: CartesianPanel.RowSelected) -> None:
+        self._update_step_caption()
+
+    def on_cartesian_panel_jog_requested(self, message: CartesianPanel.JogRequested) -> None:
+        self._interrupt()
+        step = cartesian_step_size(self.robot, message.row, self.step_level)
+        self._jog(message.row, message.steps * step, message.frame)
+
+    def on_cartesian_panel_target_asked(self, message: CartesianPanel.TargetAsked) -> None:
+        self._interrupt()
+        self._ask_target(message.row, message.frame)
+
+    @work(exclusive=True, group="modal")
+    async def _ask_target(self, row: int, frame: str) -> None:
+        self._redraw()  # self.pose must be the pose of the current q
+        step = await ask_cartesian_step(self.app, self.robot, row, frame, self.pose)
+        if step is not None:
+            self._jog(row, step, frame)
+
+    def on_cartesian_panel_frame_changed(self, message: CartesianPanel.FrameChanged) -> None:
+        self._show_now()
+        self.say(
+            "TOOL frame: along and about the tool's own x, y, z (z: the approach)"
+            if message.frame == TOOL
+            else "WORLD frame: along and about the world's X, Y, Z (turns about the tool point)"
+        )
+
+    def _jog(self, row: int, delta: float, frame: str) -> None:
+        """Move the tool; the joints follow by inverse kinematics from where they
+        are. Steps add up on the commanded pose, not on the reached one, so a
+        run of steps stays on its line instead of collecting solver residue."""
+        base = (
+            self._commanded if self._commanded is not None else self.robot.kinematics.pose(self.q)
+        )
+        target = move_pose(base, row, delta, frame)
+        move = cartesian_move(self.robot, self.q, target)
+        if not move.moved:
+            self.say(f"{row_name(row, frame)}: {move.reason or 'no change'}", error=True)
+            return
+        self.say("")
+        self.q = move.q
+        self._commanded = target
+
+    # -- P: save the joints as a pose ----------------------------------------------
+    @work(exclusive=True, group="modal")
+    async def action_save_pose(self) -> None:
+        """Keep the current joints as a named pose, in the robot and its file."""
+        answer = await ask_pose_name(self.app, self.robot, self.q)
+        if answer is None:
+            return
+        self.robot, name = answer
+        app = self.app
+        try:
+            saved_to = app.keep_robot(self.robot)  # type: ignore[attr-defined]
+        except DhsimError as exc:
+            reason = shorten_path_in(str(exc), app.robot_path)  # type: ignore[attr-defined]
+            self.say(f"not saved: {reason} (pose {name} is kept in memory)", error=True)
+        else:
+            where = (
+                f"saved in {short_path(saved_to, PATH_WIDTH)}"
+                if saved_to
+                else "kept until you quit (e, ctrl+s saves)"
+            )
+            self.say(f"pose {name} {where}")
+        self.refresh_bindings()
+
+    # -- smooth motion (m): a quintic move over about a second --------------------------
+    def _go_to(self, goal: tuple[float, ...], message: str) -> None:
+        """Straight to ``goal``, or a smooth move when motion is on; a key that
+        moves the arm interrupts it where it is."""
+        self._stop_motion()
+        self.say(message)
+        if not self.animate or goal == self.q:
+            self.q = goal
+            return
+        self._move = SmoothMove(self.q, goal, monotonic())
+        self._ticker = self.set_interval(1 / 30, self._tick)
+
+    def _tick(self) -> None:
+        if self._move is None:
+            return
+        q, done = self._move.at(monotonic())
+        self.q = q
+        if done:
+            self._stop_motion()
+
+    @property
+    def moving(self) -> bool:
+        return self._move is not None
+
+    @property
+    def motion_goal(self) -> tuple[float, ...] | None:
+        """Where the move under way ends (None when none is under way)."""
+        return self._move.goal if self._move is not None else None
+
+    def _stop_motion(self) -> bool:
+        if self._move is None:
+            return False
+        if self._ticker is not None:
+            self._ticker.stop()
+        self._move = self._ticker = None
+        if self._leave_branch():  # stopped on the way to a branch
+            self._show_now()
+        return True
+
+    def _interrupt(self) -> None:
+        """A key that moves the arm: stop a move where it is, and say so (the
+        key's own action may say something else right after)."""
+        if self._stop_motion():
+            self.say("stopped")
+
+    def action_stop(self) -> None:
+        """escape: stop a smooth move (nothing else)."""
+        self._interrupt()
+
+    def action_toggle_motion(self, _shown_as_on: int = 0) -> None:
+        """``m``: the parameter only tells the footer's two labels apart."""
+        self.animate = not self.animate
+        self.app.animate = self.animate  # a new control screen (after the editor) keeps it
+        self.refresh_bindings()
+        self.query_one(KeyHints).refresh_hints()
+        self.say(
+            "smooth motion on: h, p and b move over a second; escape stops"
+            if self.animate
+            else "smooth motion off: h, p and b jump"
+        )
+
+    # -- b: the arm's other solutions for the same tool pose ------------------------------
+    def _leave_branch(self) -> bool:
+        """Forget the branch cycle once the arm is neither in the branch it
+        went to nor on its way there: b then starts afresh from where it is."""
+        cycle = self._branches
+        if cycle is None or cycle.holds(self.q, self.motion_goal):
+            return False
+        self._branches = None
+        return True
+
+    def action_next_branch(self) -> None:
+        """The next of the arm's solutions for the tool's pose: the tool stays,
+        the arm takes another configuration (smoothly when motion is on). The
+        solutions are found once per pose, in a worker; pressed again, ``b``
+        goes on to the next; any other move of the arm starts afresh. Pressed
+        while they are being found, each press counts."""
+        if self.finding_branches:
+            self._branch_presses += 1
+            return
+        cycle = self._branches
+        if cycle is not None and cycle.holds(self.q, self.motion_goal):
+            self._next_branch(cycle, 1)
+            return
+        pose = self.robot.kinematics.pose(self.q)
+        key = branch_key(pose)
+        found = self._branch_cache.get(key)
+        if found is not None:
+            self._next_branch(BranchCycle.of(self.robot, found, self.q), 1)
+            return
+        self.finding_branches = True
+        self._branch_presses = 1
+        self.say("finding the arm's solutions for this pose…")
+        self._find_branches(self.robot, self.q, pose, key)
+
+    @work(thread=True, exclusive=True, group="branches")
+    def _find_branches(self, robot: Robot, q: tuple[float, ...], pose, key: bytes) -> None:
+        # every-solution IK loads on the first b, not at start-up (tests/core/test_layers.py)
+        from dhsim_tui.core.motion.branch_search import find_solutions
+
+        worker = get_current_worker()
+        try:
+            found = find_solutions(robot, q, pose)
+        except SEARCH_ERRORS as exc:
+            message: Message = BranchesFailed(str(exc))
+        else:
+            message = BranchesFound(q, key, found)
+        if not worker.is_cancelled:  # (the screen went away meanwhile)
+            self.post_message(message)
+
+    def on_branches_failed(self, message: BranchesFailed) -> None:
+        self.finding_branches = False
+        self.say(f"no other solutions found: {message.reason}", error=True)
+
+    def on_branches_found(self, message: BranchesFound) -> None:
+        """Every press of b while they were being found counts."""
+        self.finding_branches = False
+        self._branch_cache.put(message.key, message.found)
+        if message.q != self.q:  # the arm moved while they were being found: b again
+            return
+        found = message.found
+        if not found.solutions:
+            note = f": {found.note}" if found.note else ""
+            self.say(f"no solution found for this pose{note}", error=True)
+            return
+        self._next_branch(BranchCycle.of(self.robot, found, self.q), self._branch_presses)
+
+    def _next_branch(self, cycle: BranchCycle, steps: int) -> None:
+        """``steps`` solutions on from ``cycle``'s (the only one: stays)."""
+        following = cycle.after(steps)
+        if following is None:
+            self._branches = cycle
+            self._show_now()
+            self.say(cycle.caption + cycle.note)
+            return
+        self._stop_motion()  # (a move to the branch before: the cycle goes on)
+        self._branches = following
+        self._go_to(following.goal, following.caption + following.note)
+        self._show_now()
+
+    # -- W: the workspace cloud --------------------------------------------------------
+    def action_workspace(self) -> None:
+        """Show the points the tool can reach, faint behind the arm in every
+        view (sampled once, in a worker); again: hide them, or stop waiting."""
+        if self.cloud_state != "off":
+            self.cloud_state = "off"
+            self.workers.cancel_group(self, "workspace")
+            self._views.set_cloud(None)
+            self.say("workspace cloud off")
+            return
+        self.cloud_state = "computing"
+        if self._cloud_points is not None:
+            self.on_cloud_sampled(CloudSampled(self._cloud_points))
+            return
+        self.say("sampling the workspace… (W again: never mind)")
+        self._sample_workspace(self.robot)
+
+    @work(thread=True, exclusive=True, group="workspace")
+    def _sample_workspace(self, robot: Robot) -> None:
+        worker = get_current_worker()
+        chunks = []
+        try:
+            with np.errstate(all="ignore"):  # chunk by chunk: W may stop it
+                for chunk in workspace.position_chunks(robot, CLOUD_POINTS, 0):
+                    if worker.is_cancelled:
+                        return
+                    chunks.append(chunk)
+            message: Message = CloudSampled(np.concatenate(chunks))
+        except SEARCH_ERRORS as exc:
+            message = CloudFailed(str(exc))
+        if not worker.is_cancelled:  # W again, or the screen went away
+            self.post_message(message)
+
+    def on_cloud_failed(self, message: CloudFailed) -> None:
+        if self.cloud_state == "computing":
+            self.cloud_state = "off"
+            self.say(f"workspace not sampled: {message.reason}", error=True)
+
+    def on_cloud_sampled(self, message: CloudSampled) -> None:
+        """The samples (kept: the joints, base and tool don't change on this
+        screen); shown unless W was pressed again meanwhile."""
+        self._cloud_points = message.points
+        if self.cloud_state != "computing":
+            return
+        self.cloud_state = "on"
+        self._views.set_cloud(message.points)
+        self.say(f"workspace: {len(message.points)} positions the tool can reach (W hides them)")
+
+    # -- the views panel ------------------------------------------------------------
+    def on_views_panel_maximised(self, message: ViewsPanel.Maximised) -> None:
+        """The selected view over the whole screen: the side panel makes way."""
+        self.set_class(message.maximised, "-max")

@@ -40,6 +40,7 @@ from dhsim_tui.tui.flows.recover import offer_recovery
 from dhsim_tui.tui.flows.save import is_bundled, reapply_edits, save_flow
 from dhsim_tui.tui.screens.dialogs import Confirm, SaveGuard, short_path
 from dhsim_tui.tui.screens.editor_changes import describe_change
+from dhsim_tui.tui.screens.editor_commands import editor_commands
 from dhsim_tui.tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_NOTES, EDITOR_HELP_ROWS
 from dhsim_tui.tui.screens.editor_table import (
     JOINT_COLUMNS,
@@ -381,6 +382,10 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             self.say(f"redid: {describe_change(before, self.robot)}")
         else:
             self.say("nothing to redo", error=True)
+
+    def palette_commands(self) -> list:
+        """The command palette's commands for the editor as it is now."""
+        return list(editor_commands(self.app, self))
 
     def action_preview(self, index: int) -> None:
         self._preview.select(index)

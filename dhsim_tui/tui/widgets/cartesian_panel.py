@@ -8,6 +8,12 @@ the TOOL frame the rows move along and turn about the tool's own x, y, z: the
 position rows show which way each tool axis points in the world (z is the
 approach vector), the turn rows roll, pitch and yaw.
 
+It takes focus: while it has it, the arrows pick a row and move the tool,
+``[ ]`` change the step, enter asks for a target and ``f`` switches the frame.
+The panel keeps the row and the frame; the moves it posts as messages, and
+the screen answers them (inverse kinematics is the core's) and hands the
+pose back with :meth:`CartesianPanel.show`.
+
 Few bytes per key press (issue 9): one styled run per row, and a new pose
 repaints only the rows that changed, each up to its last changed column.
 """
@@ -19,12 +25,16 @@ from dataclasses import dataclass
 
 from rich.text import Text
 from textual import events
+from textual.binding import Binding
 from textual.message import Message
+from textual.reactive import reactive
 
 from dhsim_tui.core.model.robot import LENGTH_DECIMALS
 from dhsim_tui.core.motion.jog import CARTESIAN_ROWS, TOOL, WORLD
-from dhsim_tui.tui.widgets.joint_panel import ascii_mode
+from dhsim_tui.tui.keys import Keys
+from dhsim_tui.tui.widgets.joint_row import ascii_mode
 from dhsim_tui.tui.widgets.pose_panel import TextPanel, refresh_changed_lines
+from dhsim_tui.tui.widgets.stepping import STEP_SIZE_BINDINGS, StepSizeRequested
 
 #: the panel's title in each jogging frame (f switches)
 TITLES = {WORLD: "Cartesian: WORLD frame (f)", TOOL: "Cartesian: TOOL frame (f)"}
@@ -68,35 +78,130 @@ def cartesian_text(
     return text
 
 
-class CartesianPanel(TextPanel):
-    """Shows what the screen hands it: the tool's pose, the frame and the
-    selected row."""
+SELECT = Keys("axis", help="select an axis: X, Y, Z or a turn about x, y, z")
+MOVE = Keys("move the tool (shift ×10)", help="move the tool along the axis, or turn it about it")
+BIG_MOVE = Keys(legend=False, help="ten steps at once")
+ENTER = Keys("target", help="type a target for the selected axis")
+FRAME = Keys(
+    "world/tool frame",
+    help="Cartesian: along/about the world's X, Y, Z ⇄ the tool's own x, y, z (TOOL)",
+)
+
+BINDINGS = [
+    Binding("up", "row(-1)", "Axis", key_display="↑↓", id="cartesian.prev",
+            tooltip="Select the previous axis", group=SELECT),
+    Binding("down", "row(1)", "Axis", show=False, id="cartesian.next",
+            tooltip="Select the next axis", group=SELECT),
+    Binding("left", "jog(-1)", "Move tool", key_display="←→", id="cartesian.step_down",
+            tooltip="Move tool: one step down", group=MOVE),
+    Binding("right", "jog(1)", "Move tool", show=False, id="cartesian.step_up",
+            tooltip="Move tool: one step up", group=MOVE),
+    Binding("shift+left", "jog(-10)", "×10", show=False, id="cartesian.big_step_down",
+            tooltip="Ten steps down", group=BIG_MOVE),
+    Binding("shift+right", "jog(10)", "×10", show=False, id="cartesian.big_step_up",
+            tooltip="Ten steps up", group=BIG_MOVE),
+    *STEP_SIZE_BINDINGS,
+    Binding("enter", "ask_target", "Set", key_display="⏎", show=False, id="cartesian.enter",
+            tooltip="Type a target for the selected axis", group=ENTER),
+    # f's label names the frame it switches to
+    Binding("f", "frame('tool')", "Tool frame", show=False, id="cartesian.tool_frame",
+            tooltip="Jog in the TOOL frame: along and about the tool's own x, y, z", group=FRAME),
+    Binding("f", "frame('world')", "World frame", show=False, id="cartesian.world_frame",
+            tooltip="Jog in the WORLD frame: along and about the world's X, Y, Z", group=FRAME),
+]  # fmt: skip
+
+
+class CartesianPanel(TextPanel, can_focus=True):
+    """The tool's pose as the screen hands it, the selected row and the frame."""
 
     DEFAULT_CSS = "CartesianPanel { height: 8; }"
     ALLOW_SELECT = False
+    BINDINGS = BINDINGS
 
-    _frame: str | None = None
+    #: the selected row (CARTESIAN_ROWS) and the frame jogged in
+    row: reactive[int] = reactive(0, init=False)
+    frame: reactive[str] = reactive(WORLD, init=False)
 
     @dataclass
-    class RowPicked(Message):
-        """A click on a row: select it."""
+    class RowSelected(Message):
+        """Another row was selected (a key or a click)."""
 
         row: int
 
     @dataclass
-    class Wheeled(Message):
-        """The wheel over a row: move the tool that many steps along it."""
+    class JogRequested(Message):
+        """Move the tool ``steps`` steps along (or about) ``row`` in ``frame``."""
 
         row: int
         steps: int
+        frame: str
 
+    @dataclass
+    class TargetAsked(Message):
+        """Enter: ask for a target for ``row`` in ``frame``."""
+
+        row: int
+        frame: str
+
+    @dataclass
+    class FrameChanged(Message):
+        """``f``: jogging is now in ``frame``."""
+
+        frame: str
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self._pose: tuple | None = None  # what show() was last handed
+        self.border_title = TITLES[self.frame]
+
+    # -- keys --------------------------------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "frame":  # one key, two labels: the frame f switches to
+            return bool(parameters) and parameters[0] != self.frame
+        return True
+
+    def action_row(self, delta: int) -> None:
+        self.row = (self.row + delta) % len(CARTESIAN_ROWS)
+
+    def action_jog(self, steps: int) -> None:
+        self.post_message(self.JogRequested(self.row, steps, self.frame))
+
+    def action_step_size(self, delta: int) -> None:
+        self.post_message(StepSizeRequested(delta))
+
+    def action_ask_target(self) -> None:
+        self.post_message(self.TargetAsked(self.row, self.frame))
+
+    def action_frame(self, frame: str = "") -> None:
+        """The world's axes or the tool's own (``frame``: the one to switch
+        to; the other one, when not given)."""
+        self.frame = frame if frame in (WORLD, TOOL) else (TOOL if self.frame == WORLD else WORLD)
+
+    def watch_row(self, row: int) -> None:
+        self._show_again()
+        self.post_message(self.RowSelected(row))
+
+    def watch_frame(self, frame: str) -> None:
+        self.border_title = TITLES[frame]  # a border title repaints the whole panel
+        self.refresh_bindings()
+        self.post_message(self.FrameChanged(frame))
+
+    def _on_hide(self, event: events.Hide) -> None:
+        """Hidden (a maximised view, a terminal too small), it keeps the focus:
+        its keys go on working, and come back with it (Textual's own would
+        hand the focus on)."""
+        event.prevent_default()
+
+    # -- the mouse ---------------------------------------------------------------
     def _row_at(self, y: int) -> int | None:
         return y if 0 <= y < len(CARTESIAN_ROWS) else None
 
     def on_click(self, event: events.Click) -> None:
+        """A click on a row selects it (and Cartesian jogging)."""
         row = self._row_at(event.y)
         if row is not None:
-            self.post_message(self.RowPicked(row))
+            self.focus()
+            self.row = row
 
     def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
         self._wheel(event, 1)
@@ -105,23 +210,28 @@ class CartesianPanel(TextPanel):
         self._wheel(event, -1)
 
     def _wheel(self, event: events.MouseEvent, steps: int) -> None:
+        """The wheel over a row moves the tool that many steps along it."""
         event.stop()
         row = self._row_at(event.y)
         if row is not None:
-            self.post_message(self.Wheeled(row, steps))
+            self.focus()
+            self.row = row
+            self.post_message(self.JogRequested(row, steps, self.frame))
 
+    # -- what the screen hands it --------------------------------------------------
     def show(
         self,
         xyz: tuple[float, float, float],
         rpy: tuple[float, float, float],
-        selected: int,
         units: str,
-        frame: str = WORLD,
         axes: Sequence[Sequence[float]] | None = None,
     ) -> None:
-        if frame != self._frame:  # a border title repaints the whole panel
-            self._frame = frame
-            self.border_title = TITLES[frame]
-        text = cartesian_text(xyz, rpy, selected, units, ascii_mode(self), frame, axes)
+        """The tool's position, roll-pitch-yaw and (TOOL frame) its axes."""
+        self._pose = (xyz, rpy, units, axes)
+        text = cartesian_text(xyz, rpy, self.row, units, ascii_mode(self), self.frame, axes)
         refresh_changed_lines(self, self._text, text)
         self._text = text
+
+    def _show_again(self) -> None:
+        if self._pose is not None:
+            self.show(*self._pose)

@@ -1,245 +1,168 @@
-"""The joints panel: one row per joint with its value and a slider bar in text.
+"""The joints panel: one row per joint (:mod:`joint_row`), and joint jogging's keys.
 
-Few bytes per key press (issue 9): a row is built as a handful of styled
-runs (label, the bar up to the value, the value marker, the rest of the bar,
-the value), never one span per glyph; Textual writes each span as its own
-colour code and reset. A step repaints only its own row, and only up to the
-last column that changed.
+It takes focus: while it has it, the arrows select and step joints, ``[ ]``
+change the step and enter asks for a joint's exact value. The panel keeps
+which joint is selected; what a key or the mouse asks of the arm it posts as
+a message, and the screen answers by asking the core (it holds the robot and
+the joint values, and hands them back with :meth:`JointPanel.show`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rich.cells import cell_len
-from rich.text import Text
 from textual import events
+from textual.binding import Binding
 from textual.containers import VerticalScroll
-from textual.geometry import Region
 from textual.message import Message
-from textual.widgets import Static
+from textual.reactive import reactive
 
-from dhsim_tui.core.model.robot import LENGTH_DECIMALS, Joint
-from dhsim_tui.terminal import charset as terminal
+from dhsim_tui.tui.keys import Keys
+from dhsim_tui.tui.widgets.joint_row import JointRow, ascii_mode
+from dhsim_tui.tui.widgets.stepping import STEP_SIZE_BINDINGS, StepSizeRequested
 
-#: columns before the bar: the marker, a space, the label in four, a space
-BAR_START = 7
-#: the bar's glyphs: ends, track, home, value, value on its min / max limit
-BAR_UNICODE = ("├", "┤", "─", "┊", "●", "◀", "▶")
-BAR_ASCII = ("|", "|", "-", ":", "#", "<", ">")
+__all__ = ["JointPanel", "JointRow", "ascii_mode"]
 
+SELECT = Keys("joint", help="select a joint")
+STEP = Keys("step (shift ×10)", help="step the selected joint")
+BIG_STEP = Keys(legend=False, help="ten steps at once")
+ENTER = Keys("exact value", help="type the selected joint's exact value")
 
-def ascii_mode(widget: Static) -> bool:
-    """Whether the app draws in 7-bit ASCII (``app.ascii_mode``, set by the app)."""
-    try:
-        app = widget.app
-    except Exception:  # no app yet (a widget made outside one)
-        return False
-    return terminal.ascii_mode(app)
-
-
-def format_value(joint: Joint, value: float, units: str, ascii: bool = False) -> str:
-    """A joint value with its unit, fixed decimals so it doesn't jitter."""
-    if joint.is_revolute:
-        return f"{round(value, 2) + 0.0:9.2f}" + ("deg" if ascii else "°  ")
-    decimals = LENGTH_DECIMALS[units]
-    return f"{round(value, decimals) + 0.0:9.{decimals}f} {units:<2}"
-
-
-def slider(joint: Joint, value: float, width: int, ascii: bool = False) -> Text:
-    """``├───┊──●────┤``: the range, home (┊) and value (●); ◀/▶ on a limit.
-    In ASCII ``|---:--#----|`` and ``<``/``>``. One span per run of equal style."""
-    left, right, track, home_glyph, dot, at_min, at_max = BAR_ASCII if ascii else BAR_UNICODE
-    width = max(width, 5)
-    inner = width - 2
-    span = joint.max - joint.min
-
-    def cell(v: float) -> int:
-        return min(inner - 1, max(0, round((v - joint.min) / span * (inner - 1))))
-
-    chars = [track] * inner
-    chars[cell(joint.home)] = home_glyph
-    at = cell(value)
-    if value <= joint.min:
-        chars[at], marker_style = at_min, "bold red"
-    elif value >= joint.max:
-        chars[at], marker_style = at_max, "bold red"
-    else:
-        chars[at], marker_style = dot, "bold"
-    text = Text()
-    text.append(left + "".join(chars[:at]), style="dim")
-    text.append(chars[at], style=marker_style)
-    text.append("".join(chars[at + 1 :]) + right, style="dim")
-    return text
+BINDINGS = [
+    Binding("up", "select(-1)", "Joint", key_display="↑↓", id="joint.prev",
+            tooltip="Select the previous joint", group=SELECT),
+    Binding("down", "select(1)", "Joint", show=False, id="joint.next",
+            tooltip="Select the next joint", group=SELECT),
+    Binding("left", "step(-1)", "Step", key_display="←→", id="joint.step_down",
+            tooltip="Step: one step down", group=STEP),
+    Binding("right", "step(1)", "Step", show=False, id="joint.step_up",
+            tooltip="Step: one step up", group=STEP),
+    Binding("shift+left", "step(-10)", "×10", show=False, id="joint.big_step_down",
+            tooltip="Ten steps down", group=BIG_STEP),
+    Binding("shift+right", "step(10)", "×10", show=False, id="joint.big_step_up",
+            tooltip="Ten steps up", group=BIG_STEP),
+    *STEP_SIZE_BINDINGS,
+    Binding("enter", "ask_value", "Set", key_display="⏎", show=False, id="joint.enter",
+            tooltip="Type the exact value of the selected joint", group=ENTER),
+]  # fmt: skip
 
 
-def changed_extent(old: Text | None, new: Text) -> int | None:
-    """How many leading cells of a one-line ``new`` must be repainted to turn
-    ``old`` into it: up to the last character that differs (text or style);
-    None when nothing changed."""
-    if old is None:
-        return cell_len(new.plain)
-    a, b = old.plain, new.plain
-    if old.spans != new.spans or len(a) != len(b):
-        return max(cell_len(a), cell_len(b))
-    if a == b:
-        return None
-    last = max(i for i, (x, y) in enumerate(zip(a, b, strict=True)) if x != y)
-    return max(cell_len(a[: last + 1]), cell_len(b[: last + 1]))
-
-
-def bar_value(joint: Joint, column: int, width: int) -> float:
-    """The joint value at ``column`` of a ``width``-cell bar (its ends are
-    the limits; the inverse of where :func:`slider` puts the marker)."""
-    inner = max(width, 5) - 2
-    cell = min(inner - 1, max(0, column - 1))
-    return joint.min + (joint.max - joint.min) * cell / max(inner - 1, 1)
-
-
-class JointRow(Static):
-    """One joint: label, bar, value. Repaints only when its own value changes,
-    and then only the columns up to the last one that changed.
-
-    The mouse, as on the seed's sliders: a click selects the joint, a click
-    or drag on the bar asks for the value under the pointer, the wheel asks
-    for a step; the screen decides (it rounds to the step, keeps the limits).
-    """
-
-    DEFAULT_CSS = """
-    JointRow { height: 1; }
-    JointRow.-selected { background: $accent 30%; text-style: bold; }
-    """
-    ALLOW_SELECT = False  # a drag moves the joint, not a text selection
-
-    @dataclass
-    class Picked(Message):
-        """A click on the row (``value`` None) or on its bar, or a drag along
-        the bar (``value``: the joint value under the pointer)."""
-
-        row: JointRow
-        value: float | None = None
-
-        def can_replace(self, message: Message) -> bool:
-            # a drag's newest position is the one that counts
-            return (
-                isinstance(message, JointRow.Picked)
-                and message.row is self.row
-                and message.value is not None
-                and self.value is not None
-            )
-
-    @dataclass
-    class Wheeled(Message):
-        """The wheel over the row: ``steps`` steps up (> 0) or down."""
-
-        row: JointRow
-        steps: int
-
-    def __init__(self, number: int, joint: Joint, units: str, value: float) -> None:
-        super().__init__()
-        self.number = number
-        self.joint = joint
-        self.units = units
-        self.value = value
-        self._shown: tuple[tuple[int, bool, bool], Text] | None = None
-        self._dragging = False
-
-    @property
-    def index(self) -> int:
-        """The joint's place in the robot (0-based)."""
-        return self.number - 1
-
-    def _bar_width(self) -> int:
-        ascii = ascii_mode(self)
-        return self.size.width - len(format_value(self.joint, self.value, self.units, ascii)) - 8
-
-    def _value_at(self, x: int) -> float | None:
-        """The value under column ``x``, or None off the bar."""
-        width = max(self._bar_width(), 5)
-        if BAR_START <= x < BAR_START + width:
-            return bar_value(self.joint, x - BAR_START, width)
-        return None
-
-    def on_mouse_down(self, event: events.MouseDown) -> None:
-        if event.button != 1:
-            return
-        value = self._value_at(event.x)
-        self.post_message(self.Picked(self, value))
-        if value is not None:
-            self._dragging = True
-            self.capture_mouse()
-
-    def on_mouse_move(self, event: events.MouseMove) -> None:
-        if self._dragging and self.app.mouse_captured is self:
-            width = max(self._bar_width(), 5)
-            column = min(max(event.x, BAR_START), BAR_START + width - 1)
-            self.post_message(self.Picked(self, bar_value(self.joint, column - BAR_START, width)))
-
-    def on_mouse_up(self, event: events.MouseUp) -> None:
-        self._dragging = False
-        self.release_mouse()
-
-    def on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
-        event.stop()
-        self.post_message(self.Wheeled(self, 1))
-
-    def on_mouse_scroll_down(self, event: events.MouseScrollDown) -> None:
-        event.stop()
-        self.post_message(self.Wheeled(self, -1))
-
-    def set_value(self, value: float) -> None:
-        if value == self.value:
-            return
-        self.value = value
-        before = self._shown
-        if before is None or not self.is_mounted:
-            self.refresh()
-            return
-        key, old = before
-        new = self.render()
-        if key != self._key():
-            self.refresh()
-            return
-        extent = changed_extent(old, new)
-        if extent is not None:
-            self.refresh(Region(0, 0, min(extent, self.size.width), 1))
-
-    def _key(self) -> tuple[int, bool, bool]:
-        return (self.size.width, self.has_class("-selected"), ascii_mode(self))
-
-    def render(self) -> Text:
-        ascii = ascii_mode(self)
-        label = self.joint.label(self.number)
-        value_text = format_value(self.joint, self.value, self.units, ascii)
-        bar_width = self._bar_width()
-        at_limit = not self.joint.min < self.value < self.joint.max
-        marker = (">" if ascii else "▶") if self.has_class("-selected") else " "
-        text = Text(f"{marker} {label:<4} ")
-        text.append_text(slider(self.joint, self.value, bar_width, ascii))
-        text.append(value_text, style="bold red" if at_limit else "")
-        self._shown = (self._key(), text)
-        return text
-
-
-class JointPanel(VerticalScroll, can_focus=False):
+class JointPanel(VerticalScroll, can_focus=True, inherit_bindings=False):
     """The rows, scrolled to keep the selected joint in view."""
 
     DEFAULT_CSS = """
     JointPanel { height: auto; max-height: 100%; }
     """
+    BINDINGS = BINDINGS
+
+    selected: reactive[int] = reactive(0, init=False)
+
+    @dataclass
+    class Selected(Message):
+        """Another joint was selected (a key or a click)."""
+
+        index: int
+
+    @dataclass
+    class StepRequested(Message):
+        """Step joint ``index`` by ``steps`` steps (negative: down). Presses
+        that queue up in one direction add up into one request."""
+
+        index: int
+        steps: int
+
+        def can_replace(self, message: Message) -> bool:
+            if (
+                isinstance(message, JointPanel.StepRequested)
+                and message.index == self.index
+                and (message.steps > 0) == (self.steps > 0)
+            ):
+                message.steps += self.steps  # this one is dropped: the later one carries it
+                return True
+            return False
+
+    @dataclass
+    class ValueRequested(Message):
+        """Set joint ``index`` to ``value`` (a click or drag on its bar); a
+        drag's newest position is the one that counts."""
+
+        index: int
+        value: float
+
+        def can_replace(self, message: Message) -> bool:
+            return isinstance(message, JointPanel.ValueRequested) and message.index == self.index
+
+    @dataclass
+    class ValueAsked(Message):
+        """Enter: ask for joint ``index``'s exact value."""
+
+        index: int
 
     def rows(self) -> list[JointRow]:
         if not hasattr(self, "_rows"):
             self._rows = list(self.query(JointRow))
         return self._rows
 
-    def select(self, index: int) -> None:
-        """Mark the selected row (a changed class repaints that row only)."""
-        for i, row in enumerate(self.rows()):
-            row.set_class(i == index, "-selected")
-            if i == index:
-                self.scroll_to_widget(row, animate=False)
+    def on_mount(self) -> None:
+        self._mark(self.selected)
 
+    # -- what the screen hands it ----------------------------------------------
     def show(self, q: tuple[float, ...]) -> None:
         for row, value in zip(self.rows(), q, strict=True):
             row.set_value(value)
+
+    # -- keys --------------------------------------------------------------------
+    def action_select(self, delta: int) -> None:
+        if self.rows():
+            self.selected = (self.selected + delta) % len(self.rows())
+
+    def action_step(self, steps: int) -> None:
+        self.post_message(self.StepRequested(self.selected, steps))
+
+    def action_step_size(self, delta: int) -> None:
+        self.post_message(StepSizeRequested(delta))
+
+    def action_ask_value(self) -> None:
+        self.post_message(self.ValueAsked(self.selected))
+
+    def watch_selected(self, index: int) -> None:
+        self._mark(index)
+        self.post_message(self.Selected(index))
+
+    def _mark(self, index: int) -> None:
+        """The selected row marked ▶ (a changed class repaints that row only),
+        the mark shown only while the panel jogs (is its screen's focus)."""
+        jogging = self.is_attached and self.screen.focused is self
+        for i, row in enumerate(self.rows()):
+            row.set_class(i == index and jogging, "-selected")
+            if i == index:
+                self.scroll_to_widget(row, animate=False)
+
+    def _on_hide(self, event: events.Hide) -> None:
+        """Hidden (a maximised view, a terminal too small), it keeps the focus:
+        its keys go on working, and come back with it (Textual's own would
+        hand the focus on)."""
+        event.prevent_default()
+
+    def on_focus(self) -> None:
+        self._mark(self.selected)
+
+    def on_blur(self) -> None:
+        self._mark(self.selected)
+
+    # -- the mouse: the rows say where, the panel asks -----------------------------
+    def on_joint_row_picked(self, message: JointRow.Picked) -> None:
+        """A click selects the joint (and joint jogging); on its bar, or
+        dragged along it, asks for the value under the pointer."""
+        message.stop()
+        self.focus()
+        self.selected = message.row.index
+        if message.value is not None:
+            self.post_message(self.ValueRequested(message.row.index, message.value))
+
+    def on_joint_row_wheeled(self, message: JointRow.Wheeled) -> None:
+        """The wheel over a joint selects and steps it."""
+        message.stop()
+        self.focus()
+        self.selected = message.row.index
+        self.post_message(self.StepRequested(message.row.index, message.steps))

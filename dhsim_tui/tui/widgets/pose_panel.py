@@ -16,7 +16,7 @@ from textual.widget import Widget
 from dhsim_tui.core.analysis.jacobian import Dexterity
 from dhsim_tui.core.model.kinematics import EndEffector
 from dhsim_tui.core.model.robot import LENGTH_DECIMALS
-from dhsim_tui.tui.widgets.joint_panel import ascii_mode, changed_extent
+from dhsim_tui.tui.widgets.joint_row import ascii_mode, changed_extent
 
 READOUTS = ("oat", "rpy", "matrix")
 #: every read-out at once: what a tall side panel shows (v then has nothing to switch)

@@ -40,6 +40,7 @@ from dhsim_tui.scene.wireframe import FRAME_MODES
 from dhsim_tui.terminal.charset import ascii_mode
 from dhsim_tui.tui.widgets.arm_view import ArmView
 from dhsim_tui.tui.widgets.legend import FRAMES_SHORT, legend_items, pack
+from dhsim_tui.tui.widgets.view_keys import BINDINGS
 from dhsim_tui.tui.widgets.view_style import look_of, role_styles
 
 #: at and above this size a screen shows all four views at once
@@ -66,6 +67,7 @@ class ViewsPanel(Container):
     DEFAULT_CSS = """
     ViewsPanel .legend { height: 1; padding: 0 1; color: $text-muted; }
     """
+    BINDINGS = BINDINGS
 
     @dataclass
     class Maximised(Message):
@@ -303,6 +305,35 @@ class ViewsPanel(Container):
                 widget.border_subtitle = subtitle
 
     # -- what keys and the mouse do ------------------------------------------
+    def action_next_view(self) -> None:
+        self.select_next()
+
+    def action_view(self, index: int) -> None:
+        self.select(index)
+
+    def action_maximise(self) -> None:
+        self.toggle_maximise()
+
+    def action_zoom(self, steps: int) -> None:
+        """In (steps > 0) or out about the arm; 0: the whole work area."""
+        if steps == 0:
+            self.reset_zoom()
+        else:
+            self.zoom_by(steps)
+
+    def action_fit(self) -> None:
+        self.toggle_fit()
+
+    def action_frames(self) -> None:
+        self.cycle_frames()
+
+    def action_orbit(self, azimuth: int, elevation: int) -> None:
+        """Turn the 3-D view (and select it, if it is not on screen)."""
+        iso = self._views[len(VIEWS) - 1]
+        if not iso.display or not iso.size.area:
+            self.select(len(VIEWS) - 1)
+        self.orbit_by(azimuth * Orbit.STEP, elevation * Orbit.STEP)
+
     def select(self, index: int) -> None:
         self.selected = index % len(VIEWS)
 

@@ -1,0 +1,147 @@
+"""One target of the numerical IK solver (:mod:`dhsim_tui.core.ik.numerical`)
+for one robot: :class:`_Problem` measures errors and Jacobians in internal
+units (radians for revolute joints, reach fractions for prismatic ones), on
+top of :class:`_Setup`, what no target changes, kept on the robot; and the
+tolerances a solution must meet.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from dhsim_tui.core.analysis.jacobian import (
+    controllable_rows,
+    jacobian_from_frames,
+    kernel,
+    task_rank,
+)
+from dhsim_tui.core.analysis.workspace import length_scale
+from dhsim_tui.core.ik.rotation import rotation_error
+from dhsim_tui.core.model.robot import Robot
+
+#: position tolerance as a fraction of the reach, and orientation tolerance (rad)
+POSITION_TOL = 5e-7
+ORIENTATION_TOL = 5e-7
+_DEG = math.pi / 180.0
+
+
+class _Setup:
+    """What a solve needs of a robot that no target changes, kept on the robot
+    (numpy arrays for the diagnosis, plain lists for the fast loop)."""
+
+    def __init__(self, robot: Robot) -> None:
+        self.scale = length_scale(robot)
+        self.revolute = np.array([j.is_revolute for j in robot.joints])
+        self.to_internal = np.where(self.revolute, _DEG, 1.0 / self.scale)
+        self.low = np.array(robot.lower) * self.to_internal
+        self.high = np.array(robot.upper) * self.to_internal
+        full = controllable_rows(robot).copy()
+        position = full.copy()
+        position[3:] = False
+        self.rows = {False: full, True: position}
+        rank = task_rank(robot)
+        self.rank = {k: min(robot.dof, int(v.sum()), rank) for k, v in self.rows.items()}
+        self.kernel = kernel(robot)
+        self.to_user = (1.0 / self.to_internal).tolist()
+        self.low_list = self.low.tolist()
+        self.high_list = self.high.tolist()
+        self.revolute_list = self.revolute.tolist()
+        self.dof = robot.dof
+        for shared in (self.revolute, self.to_internal, self.low, self.high, full, position):
+            shared.flags.writeable = False  # every problem of this robot reads them
+
+
+def _setup(robot: Robot) -> _Setup:
+    cached = robot.__dict__.get("_ik_setup")
+    if cached is None:
+        cached = _Setup(robot)
+        object.__setattr__(robot, "_ik_setup", cached)
+    return cached
+
+
+class _Problem:
+    """One target for one robot: errors and steps in internal units (radians for
+    revolute joints, reach fractions for prismatic ones)."""
+
+    def __init__(self, robot: Robot, target: np.ndarray, position_only: bool) -> None:
+        setup = _setup(robot)
+        self.robot = robot
+        self.setup = setup
+        self.kin = robot.kinematics
+        self.scale = setup.scale
+        self.revolute = setup.revolute
+        self.to_internal = setup.to_internal
+        self.low = setup.low
+        self.high = setup.high
+        self.rows = setup.rows[position_only]
+        self.target = target
+        self.position_only = position_only
+        #: row weights of the least-squares problem (all 1 but for POSITION_FIRST)
+        self.weight = np.ones(6)
+        self.rank = setup.rank[position_only]
+        # the target as plain floats for the fast loop: position per reach, rotation rows
+        self.goal = target[:3, 3].tolist()
+        self.goal_rotation = target[:3, :3].ravel().tolist()
+
+    def limit(self, x: np.ndarray) -> np.ndarray:
+        """Into the joint limits: a revolute joint past one limit takes the same
+        angle a turn away when that fits (wide-range joints), else it stops."""
+        turn = 2 * math.pi
+        over = self.revolute & (x > self.high) & (x - turn >= self.low)
+        under = self.revolute & (x < self.low) & (x + turn <= self.high)
+        x = np.where(over, x - turn, np.where(under, x + turn, x))
+        return np.clip(x, self.low, self.high)
+
+    def user(self, x: np.ndarray) -> tuple[float, ...]:
+        """Joint values in the robot's units, within its limits (the way back
+        from radians or reach fractions may round a limit a digit past it)."""
+        values = (x / self.to_internal).tolist()
+        bounds = zip(values, self.robot.lower, self.robot.upper, strict=True)
+        return tuple(min(max(v, lo), hi) for v, lo, hi in bounds)
+
+    def evaluate(self, x: np.ndarray):
+        frames = self.kin.frames(self.user(x))
+        pose = frames[-1]
+        error = np.empty(6)
+        error[:3] = (self.target[:3, 3] - pose[:3, 3]) / self.scale
+        error[3:] = 0.0 if self.position_only else rotation_error(self.target[:3, :3], pose[:3, :3])
+        return frames, error
+
+    def full_jacobian(self, frames: np.ndarray) -> np.ndarray:
+        """All six rows, dimensionless (linear rows per reach, prismatic columns per reach)."""
+        jac = jacobian_from_frames(self.robot, frames)
+        jac[:3] /= self.scale
+        jac[:, ~self.revolute] *= self.scale
+        return jac
+
+    def system(self, frames: np.ndarray, error: np.ndarray):
+        """The weighted rows solved for: (Jacobian, error)."""
+        w = self.weight[self.rows]
+        return self.full_jacobian(frames)[self.rows] * w[:, None], error[self.rows] * w
+
+    def score(self, error: np.ndarray) -> float:
+        """The size of the error in the rows solved for (unweighted)."""
+        return math.sqrt(sum(v * v for v, r in zip(error.tolist(), self.rows, strict=True) if r))
+
+    def converged(self, error: np.ndarray) -> bool:
+        return (
+            np.linalg.norm(error[:3][self.rows[:3]]) <= POSITION_TOL
+            and np.linalg.norm(error[3:][self.rows[3:]]) <= ORIENTATION_TOL
+        )
+
+    def errors(self, error: np.ndarray) -> tuple[float, float]:
+        """Position error (robot units) and orientation error (rad), judged on
+        every requested direction, including those the arm cannot move: a
+        planar arm asked for a point off its plane has not reached it."""
+        e = error.tolist()
+        position = math.hypot(*e[:3]) * self.scale
+        return position, 0.0 if self.position_only else math.hypot(*e[3:])
+
+    def position_reached(self, position_error: float) -> bool:
+        return position_error <= POSITION_TOL * self.scale * 2
+
+    def view(self, position_only: bool) -> _Problem:
+        """The same target judged on its position only, or on the whole pose."""
+        return _Problem(self.robot, self.target, position_only)

@@ -1,0 +1,346 @@
+"""The control screen, driven with Pilot as a person would drive it."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+
+import pytest
+
+from dhsim_tui.core import load_robot
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.screens.value_entry import ValueEntry
+from dhsim_tui.tui.widgets.arm_view import ArmView
+from dhsim_tui.tui.widgets.joint_panel import JointPanel
+from dhsim_tui.tui.widgets.pose_panel import PosePanel
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
+
+
+def make_app(name: str = "puma560", renderer: str = "plotext", animate: bool = False) -> DhsimApp:
+    """Motion is off unless a test is about motion, so moves land at once."""
+    robot, path = load_robot(name)
+    return DhsimApp(robot, path, renderer, animate=animate)
+
+
+def screen_of(app: DhsimApp) -> ControlScreen:
+    screen = app.screen
+    assert isinstance(screen, ControlScreen)
+    return screen
+
+
+def status(app: DhsimApp) -> str:
+    return str(app.screen.query_one("#status").render())
+
+
+def screen_text(app: DhsimApp) -> str:
+    """What a person sees: the composed screen as plain text."""
+    strips = app.screen._compositor.render_strips()
+    return "\n".join(strip.text for strip in strips)
+
+
+def pose_numbers(app: DhsimApp) -> dict[str, float]:
+    """The pose panel's numbers as a person reads them off the screen."""
+    text = str(app.screen.query_one(PosePanel).render())
+    return {name: float(value) for name, value in re.findall(r"(\w+)\s+(-?\d+\.\d+)", text)}
+
+
+async def test_right_left_and_shift_step_the_selected_joint():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right", "right", "shift+right")
+        assert screen_of(app).q == (12.0, 0, 0, 0, 0, 0)
+        await pilot.press("down", "left", "shift+left")
+        assert screen_of(app).q == (12.0, -11.0, 0, 0, 0, 0)
+
+
+async def test_up_down_select_and_wrap():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("up")
+        assert screen_of(app).query_one(JointPanel).selected == 5
+        await pilot.press("down", "down")
+        assert screen_of(app).query_one(JointPanel).selected == 1
+        rows = app.screen.query("JointRow")
+        assert rows[1].has_class("-selected") and not rows[0].has_class("-selected")
+
+
+async def test_step_size_ladder_changes_the_step_and_is_shown():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right_square_bracket", "right")
+        assert screen_of(app).q[0] == 5.0
+        assert "step 5 deg" in str(app.screen.query_one("#joints").border_subtitle)
+        for _ in range(6):  # past the top of the ladder it stays at 45
+            await pilot.press("right_square_bracket")
+        await pilot.press("right")
+        assert screen_of(app).q[0] == 50.0
+        for _ in range(6):
+            await pilot.press("left_square_bracket")
+        await pilot.press("left")
+        assert screen_of(app).q[0] == pytest.approx(49.9)
+
+
+async def test_prismatic_steps_use_the_robots_unit():
+    app = make_app("stanford")
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("down", "down", "right", "right_square_bracket", "right")
+        assert screen_of(app).q[2] == pytest.approx(304.8 + 1 + 10)
+        assert "step 10 mm" in str(app.screen.query_one("#joints").border_subtitle)
+
+
+async def test_stepping_stops_at_the_limit_and_says_so():
+    app = make_app()  # joint 1: -160..160
+    async with app.run_test(size=(80, 24)) as pilot:
+        for _ in range(3):
+            await pilot.press("right_square_bracket")  # 45 deg steps
+        for _ in range(5):
+            await pilot.press("right")
+        assert screen_of(app).q[0] == 160.0
+        assert "Th1 is at its max limit, 160 deg" in status(app)
+        row = str(app.screen.query("JointRow")[0].render())
+        assert "▶" in row.split("├")[1]  # the bar shows the limit
+        await pilot.press("left")
+        assert screen_of(app).q[0] == 115.0
+        assert status(app) == ""
+
+
+async def test_enter_sets_an_exact_value():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("down", "enter")
+        assert isinstance(app.screen, ValueEntry)
+        await pilot.press("ctrl+u", *"12.5", "enter")
+        assert isinstance(app.screen, ControlScreen)
+        assert screen_of(app).q[1] == 12.5
+
+
+@pytest.mark.parametrize(
+    ("typed", "message"),
+    [
+        ("abc", "'abc' is not a number"),
+        ("", "type a number"),
+        ("nan", "NaN"),
+        ("inf", "out of range"),
+        ("1e400", "out of range"),
+        ("300", "300 is outside Th2's limits -45..225 deg"),
+    ],
+)
+async def test_enter_rejects_bad_values_and_changes_nothing(typed, message):
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("down", "enter", "ctrl+u", *typed, "enter")
+        await pilot.pause()  # the refusal is shown once the key has been handled
+        assert isinstance(app.screen, ValueEntry)
+        assert message in str(app.screen.query_one("#error").render())
+        assert app.screen.query_one("Input").value == typed  # kept, to be fixed
+        await pilot.press("escape")
+        assert isinstance(app.screen, ControlScreen)
+        assert screen_of(app).q == app.robot.home
+
+
+async def test_home_key_and_h_send_every_joint_home():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right", "down", "right", "right")
+        assert screen_of(app).q != app.robot.home
+        await pilot.press("h")
+        assert screen_of(app).q == app.robot.home
+        await pilot.press("right")
+        await pilot.press("home")
+        assert screen_of(app).q == app.robot.home
+
+
+async def test_p_cycles_the_named_poses():
+    app = make_app()
+    robot = app.robot
+    async with app.run_test(size=(80, 24)) as pilot:
+        seen = []
+        for _ in range(5):
+            await pilot.press("p")
+            seen.append(screen_of(app).q)
+        assert seen == [robot.pose(n) for n in ("qz", "qr", "qs", "qn", "qz")]
+        assert "pose qz (1/4)" in status(app)
+
+
+async def test_p_is_disabled_for_a_robot_without_poses():
+    app = make_app("irb140")
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right", "p")
+        assert screen_of(app).q[0] == 1.0
+        assert screen_of(app).check_action("next_pose", ()) is None
+
+
+async def test_v_cycles_oat_rpy_and_matrix():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        panel = app.screen.query_one(PosePanel)
+        assert {"O", "A", "T"} <= set(pose_numbers(app))
+        await pilot.press("v")
+        assert {"roll", "pitch", "yaw"} <= set(pose_numbers(app))
+        await pilot.press("v")
+        text = str(panel.render())
+        assert "431.80" in text and "0.0000" in text and "1.0000" in text
+        await pilot.press("v")
+        assert {"O", "A", "T"} <= set(pose_numbers(app))
+
+
+@pytest.mark.parametrize(
+    "q", [(0, 30, 45, 60, 90, 0), (30, 30, 30, 30, 30, 30), (0, 90, 0, 45, 0, 60)]
+)
+async def test_screen_numbers_equal_dhsim_fk(q):
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        for index, value in enumerate(q):
+            if index:
+                await pilot.press("down")
+            await pilot.press("enter", "ctrl+u", *str(value), "enter")
+        assert screen_of(app).q == tuple(float(v) for v in q)
+        shown = pose_numbers(app)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "dhsim_tui",
+            "fk",
+            "puma560",
+            "--q",
+            ",".join(map(str, q)),
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    fk = json.loads(out)
+    for name, value in zip("XYZ", fk["xyz"], strict=True):
+        assert shown[name] == round(value, 2) + 0.0
+    for name, value in zip("OAT", fk["oat"], strict=True):
+        assert shown[name] == round(value, 2) + 0.0
+
+
+async def test_resize_keeps_joints_step_and_view():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right", "right_square_bracket", "3")
+        before = (
+            screen_of(app).q,
+            screen_of(app).step_level,
+            screen_of(app).query_one(ViewsPanel).selected,
+        )
+        await pilot.resize_terminal(160, 48)
+        await pilot.pause()
+        assert app.screen.has_class("-wide")
+        assert all(v.display for v in app.screen.query(ArmView))
+        await pilot.resize_terminal(80, 24)
+        await pilot.pause()
+        assert not app.screen.has_class("-wide")
+        assert (
+            screen_of(app).q,
+            screen_of(app).step_level,
+            screen_of(app).query_one(ViewsPanel).selected,
+        ) == before
+        shown = [v.view.key for v in app.screen.query(ArmView) if v.display]
+        assert shown == ["side"]
+
+
+async def test_tab_and_number_keys_switch_views_at_80x24():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+
+        def shown():
+            return [v.view.key for v in app.screen.query(ArmView) if v.display]
+
+        assert shown() == ["front"]
+        await pilot.press("tab")
+        assert shown() == ["side"]
+        await pilot.press("1")
+        assert shown() == ["top"]
+
+
+async def test_too_small_terminal_shows_a_message():
+    app = make_app()
+    async with app.run_test(size=(40, 12)) as pilot:
+        await pilot.pause()
+        assert app.screen.has_class("-too-small")
+        assert "Terminal too small: 40×12" in str(app.screen.query_one("#too-small").render())
+        await pilot.resize_terminal(80, 24)
+        await pilot.pause()
+        assert not app.screen.has_class("-too-small")
+
+
+async def test_help_lists_keys_and_closes():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("question_mark")
+        assert isinstance(app.screen, HelpScreen)
+        text = " ".join(screen_text(app).split())
+        for words in (
+            "select a joint",
+            "step the selected joint",
+            "exact value",
+            "home",
+            "qz, qr, qs, qn",
+            "4×4",
+        ):
+            assert words in text
+        await pilot.press("escape")
+        assert isinstance(app.screen, ControlScreen)
+
+
+async def test_q_quits():
+    app = make_app()
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("q")
+    assert app.return_code == 0
+
+
+async def test_views_redraw_when_a_joint_moves():
+    app = make_app()
+    async with app.run_test(size=(160, 48)) as pilot:
+        await pilot.pause()
+        top = app.screen.query_one("#view-top", ArmView)
+        before = top.picture.lines
+        await pilot.press("right_square_bracket", "right_square_bracket", "right")
+        await pilot.pause()
+        assert top.picture.lines != before
+
+
+async def test_braille_renderer_draws_the_arm_without_axes():
+    app = make_app(renderer="braille")
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("right")
+        await pilot.pause()
+        view = app.screen.query_one("#view-front", ArmView)
+        assert view.scene is not None
+        text = view.picture.text()
+        assert "◆" in text and "┤" not in text  # the tool, and no plotext axes
+
+
+async def test_every_bundled_robot_opens_and_steps(bundled):
+    app = DhsimApp(bundled, None, animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        for _ in range(bundled.dof):
+            await pilot.press("right", "down")
+        await pilot.press("h")
+        assert screen_of(app).q == bundled.home
+
+
+async def test_rows_scroll_to_keep_the_selected_joint_in_view():
+    from dhsim_tui.core import Joint, Robot
+
+    robot = Robot("long arm", tuple(Joint(a=50.0) for _ in range(20)))
+    app = DhsimApp(robot, None, animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await pilot.press("up")  # wraps to joint 20
+        await pilot.pause()
+        panel = app.screen.query_one("#joints")
+        row = app.screen.query("JointRow")[19]
+        assert panel.scroll_y > 0
+        assert panel.region.contains_region(row.region)
+        await pilot.press("down")  # back to joint 1
+        await pilot.pause()
+        assert panel.scroll_y == 0
