@@ -23,9 +23,13 @@ both; this script is the long one, whose figures the README gives.
 from __future__ import annotations
 
 import argparse
+import collections
+import contextlib
 import json
+import os
 import random
 import shutil
+import signal
 import sys
 import tempfile
 import time
@@ -117,7 +121,12 @@ def _sequence(rng: random.Random, size: tuple[int, int]) -> list[tuple[str, bool
     return out
 
 
+#: the last events written, with when (s since the process started), for a hang's report
+SENT: collections.deque[tuple[float, str]] = collections.deque(maxlen=120)
+
+
 def _write(screen: PtyScreen, data: str) -> bool:
+    SENT.append((time.monotonic(), data))
     try:
         screen.proc.write(data.encode())
         return True
@@ -153,6 +162,20 @@ def _responds(screen: PtyScreen) -> bool:
                 return True
             time.sleep(0.05)
     return False
+
+
+def _stacks(screen: PtyScreen) -> str:
+    """What a hung dhsim was doing: its screen, and every thread's stack
+    (SIGABRT, which faulthandler answers: PYTHONFAULTHANDLER is set)."""
+    shown = screen.screen_text()
+    if screen.proc.isalive():
+        with contextlib.suppress(OSError):
+            os.kill(screen.proc.pid, signal.SIGABRT)
+        time.sleep(1.0)
+    tail = bytes(screen.raw[-6000:]).decode("utf-8", "replace")
+    start = SENT[0][0] if SENT else 0.0
+    sent = " ".join(f"{at - start:.2f}:{data!r}" for at, data in SENT)
+    return f"{shown}\n-- the last events sent:\n{sent}\n-- the last bytes it wrote:\n{tail}"
 
 
 def _quit(screen: PtyScreen) -> bool:
@@ -200,7 +223,7 @@ def run_monkey(
         shutil.copy(robot_file, folder / "robots" / "arm.toml")
         size = rng.choice(SIZES)
         args = rng.choice([["robots/arm.toml"], ["edit", "robots/arm.toml"], []])
-        env = {"DHSIM_RECOVERY_DIR": str(folder / "recovery")}
+        env = {"DHSIM_RECOVERY_DIR": str(folder / "recovery"), "PYTHONFAULTHANDLER": "1"}
         env.update(rng.choice([{}, {"TERM": "xterm"}, {"NO_COLOR": "1"}, {"LC_ALL": "C"}]))
         what = f"process {report.processes + 1} ({' '.join(args) or 'dhsim'}, {size}, {env})"
         screen = PtyScreen(args, size=size, env=env, cwd=folder)
@@ -224,10 +247,10 @@ def run_monkey(
                 if not screen.proc.isalive():
                     break  # it quit (q answered "discard"): a new process
                 if not _responds(screen):
-                    report.hangs.append(f"{what}: no redraw after a key:\n{screen.screen_text()}")
+                    report.hangs.append(f"{what}: no redraw after a key:\n{_stacks(screen)}")
                     break
             if screen.proc.isalive() and not _quit(screen):
-                report.hangs.append(f"{what}: did not quit when asked")
+                report.hangs.append(f"{what}: did not quit when asked:\n{_stacks(screen)}")
             found = _traceback(screen)
             if found and f"{what}: {found}" not in report.tracebacks:
                 report.tracebacks.append(f"{what}: {found}")

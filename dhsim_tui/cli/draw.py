@@ -150,7 +150,7 @@ def _ascii_output(out: str | None) -> bool:
     """Text for a terminal whose locale is not UTF-8 is 7-bit ASCII; a file is UTF-8."""
     if out is not None:
         return False
-    from dhsim_tui.terminal.charset import original_environ, wants_ascii
+    from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
     return wants_ascii(original_environ())
 

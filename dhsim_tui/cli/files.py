@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from dhsim_tui.core.files.formats import EXPORT_FORMATS
@@ -71,6 +72,12 @@ def _tell(lines: tuple[str, ...], to_stderr: bool) -> None:
 
 
 def cmd_import(args: argparse.Namespace) -> int:
+    if args.program:
+        return _import_program(args)
+    if args.robot is not None:
+        raise DhsimError(
+            printable(f"{shortened(args.robot)}: a second file is read only with --program")
+        )
     from dhsim_tui.core.interop.importer import import_file
 
     _check_robot_output(args.output, args.force)
@@ -84,6 +91,57 @@ def cmd_import(args: argparse.Namespace) -> int:
     )
     _tell(result.notes, to_stderr=args.output is None)
     _write_robot(result.robot, result.header, args.output, args.force)
+    return 0
+
+
+#: the largest trajectory CSV ``import --program`` reads (an hour at 100 Hz of
+#: a 7-joint arm is about 60 MB)
+MAX_PROGRAM_CSV_BYTES = 128 * 1024 * 1024
+
+
+def _import_program(args: argparse.Namespace) -> int:
+    """``dhsim import --program FILE.csv ROBOT``: the robot file with the
+    trajectory added as a program of joint moves (waits kept; see
+    core.motion.trajectory_csv), its comments kept."""
+    from dhsim_tui.core.files.atomicfile import read_file
+    from dhsim_tui.core.files.robotfile import render
+    from dhsim_tui.core.motion.trajectory_csv import program_from_csv
+
+    if args.robot is None:
+        raise DhsimError(
+            "--program: name the robot to add it to (dhsim import --program FILE ROBOT)"
+        )
+    for option in ("tip", "base", "convention", "units"):
+        if getattr(args, option) is not None:
+            raise DhsimError(f"--{option} does not go with --program")
+    _check_robot_output(args.output, args.force)
+    robot, path = load_robot(args.robot)
+    source = Path(args.file)
+    name = args.name if args.name is not None else source.stem
+    if name in robot.program_names:
+        raise DhsimError(
+            printable(
+                f"{shortened(robot.name)} has a program named {shortened(name)!r} already; "
+                "give the new one another with --name"
+            )
+        )
+    raw, _ = read_file(source, MAX_PROGRAM_CSV_BYTES)
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise DhsimError(printable(f"{args.file}: not UTF-8 text")) from None
+    program = program_from_csv(robot, text, name, args.file)
+    updated = replace(robot, programs=(*robot.programs, program))
+    _tell(
+        (f"{shortened(robot.name)}: program {shortened(name)!r}, {len(program.steps)} steps",),
+        to_stderr=args.output is None,
+    )
+    original = path.read_text(encoding="utf-8")
+    if args.output is None:
+        sys.stdout.write(render(updated, original))
+        return 0
+    save(updated, Path(args.output), expect=... if args.force else None, base_text=original)
+    print(printable(f"wrote {args.output}"))
     return 0
 
 
@@ -133,9 +191,18 @@ def subparsers(parser_class: type[argparse.ArgumentParser]) -> dict[str, argpars
     """The three commands' parsers (``parser_class`` reports errors in one line)."""
     imp = parser_class(
         prog="dhsim import",
-        description="Make a dhsim robot from a URDF's serial chain or a D-H table in CSV.",
+        description="Make a dhsim robot from a URDF's serial chain or a D-H table in CSV; "
+        "with --program, add a trajectory CSV (dhsim run --csv) to a robot as a program.",
     )
     imp.add_argument("file", help="a .urdf or .csv file")
+    imp.add_argument("robot", nargs="?", help="with --program: the robot to add the program to")
+    imp.add_argument(
+        "--program",
+        action="store_true",
+        help="read FILE as a trajectory (time, step, move, q1...) and write ROBOT's file with "
+        "it added as a program: a joint move to each step's last row, at the speed that "
+        "takes as long (waits kept); without a step column, a joint move to each row",
+    )
     imp.add_argument(
         "--tip", metavar="LINK", help="URDF: the chain's last link (needed for a tree)"
     )
@@ -153,7 +220,11 @@ def subparsers(parser_class: type[argparse.ArgumentParser]) -> dict[str, argpars
         choices=tuple(UNITS),
         help="length unit of the robot made (default: m for a URDF, the CSV header's or mm)",
     )
-    imp.add_argument("--name", help="the robot's name (default: the URDF's or the file's)")
+    imp.add_argument(
+        "--name",
+        help="the robot's name (default: the URDF's or the file's); with --program, the "
+        "program's (default: the file's name without .csv)",
+    )
     _output_options(imp, "the robot file (.toml)")
     imp.set_defaults(func=cmd_import)
     exp = parser_class(

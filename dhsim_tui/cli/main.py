@@ -26,12 +26,13 @@ from dhsim_tui.cli.draw import subparsers as draw_subparsers
 from dhsim_tui.cli.files import subparsers as files_subparsers
 from dhsim_tui.cli.kinematics import VALUE_OPTIONS
 from dhsim_tui.cli.kinematics import subparsers as kinematics_subparsers
+from dhsim_tui.cli.run import subparsers as run_subparsers
 from dhsim_tui.cli.workspace import subparsers as workspace_subparsers
 from dhsim_tui.core.files.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
 from dhsim_tui.core.files.robotfile import load_with_stamp
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.text import printable
-from dhsim_tui.terminal.charset import original_environ, wants_ascii
+from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 1
@@ -253,6 +254,7 @@ def _subparsers() -> dict[str, _Parser]:
         **files_subparsers(_Parser),
         **workspace_subparsers(_Parser),
         **draw_subparsers(_Parser),
+        **run_subparsers(_Parser),
     }
 
 
@@ -274,6 +276,9 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
                   [--size WxH] [--fit] [--frames all|ends|none] [--orbit AZ,EL]
                   [-o FILE.svg|FILE.txt]
                                  the views as a picture for a report
+       dhsim run ROBOT PROGRAM [--rate HZ] [--from V1,V2,...|POSE]
+                 [--csv FILE [--force]] [--json | --plot]
+                                 play a program and check its path (exit 3: problems)
        dhsim edit ROBOT [--ascii | --unicode]
                                  the table editor
        dhsim new [NAME] [--ascii | --unicode]

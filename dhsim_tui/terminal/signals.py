@@ -42,7 +42,8 @@ from collections.abc import Callable
 from textual.app import App
 from textual.drivers.linux_driver import LinuxDriver
 
-from dhsim_tui.terminal.charset import ascii_mode, ascii_text, to_ascii
+from dhsim_tui.terminal.ascii_table import to_ascii
+from dhsim_tui.terminal.charset import ascii_mode, ascii_text
 from dhsim_tui.terminal.sgr import compact
 
 #: signals that end dhsim after keeping unsaved work

@@ -102,6 +102,8 @@ THEMES: dict[str, Theme] = {
         },
     ),
 }
+#: the themes --theme offers, by short names, and the Textual theme each is
+THEME_NAMES = {short: theme.name for short, theme in THEMES.items()}
 
 
 # -- 16 colours ---------------------------------------------------------------------
@@ -239,3 +241,12 @@ def install_filters(app) -> None:
         filters[:] = [f for f in filters if not isinstance(f, Monochrome | NoColor)]
         filters.append(NoColour(app))
     filters.append(SixteenColours(app))
+
+
+def install_colours(app, theme: str) -> None:
+    """dhsim's themes registered on ``app`` and ``theme`` (one of
+    ``THEME_NAMES``) chosen, then its line filters (:func:`install_filters`)."""
+    for registered in THEMES.values():
+        app.register_theme(registered)
+    install_filters(app)
+    app.theme = THEME_NAMES[theme]

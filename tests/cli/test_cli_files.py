@@ -12,6 +12,7 @@ import json
 import math
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -188,7 +189,8 @@ def test_csv_export_then_import_gives_the_same_robot(capsys, tmp_path):
         out = tmp_path / f"{name}.toml"
         code, _, err = run(capsys, "import", str(csv_path), "-o", str(out))
         assert code == 0, err
-        assert load(out) == load_robot(name)[0], name
+        # a D-H table: everything but the programs (the JSON and URDF carry those)
+        assert load(out) == replace(load_robot(name)[0], programs=()), name
 
 
 @pytest.mark.parametrize(

@@ -17,6 +17,7 @@ import math
 import os
 import stat
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -27,6 +28,7 @@ from hypothesis import strategies as st
 
 from dhsim_tui.core.files.formats import EXPORT_FORMATS, EXPORT_SUFFIXES
 from dhsim_tui.core.files.library import bundled_names, load_robot
+from dhsim_tui.core.files.programschema import programs_from_data
 from dhsim_tui.core.interop.export import (
     export_text,
     to_csv,
@@ -542,7 +544,7 @@ def _check_csv(robot: Robot) -> None:
         assert row[:2] == [str(number), "R" if joint.is_revolute else "P"]
         expected = [joint.theta, joint.d, joint.a, joint.alpha, joint.offset, joint.min, joint.max]
         assert [float(v) for v in row[2:]] == expected  # exact
-    assert _robot_from_csv(text) == robot
+    assert _robot_from_csv(text) == replace(robot, programs=())  # a D-H table: no programs
 
 
 @pytest.mark.parametrize("name", BUNDLED)
@@ -574,7 +576,7 @@ def test_csv_numbers_are_whole_and_names_quoted():
     assert '# name = "a \\"quoted\\", name"' in text
     assert '# pose "odd, \\"one\\" = 1" = 0.30000000000000004' in text
     assert "1,R,0.30000000000000004,0,431.8,-90,0,-160,160\n" in text
-    assert _robot_from_csv(text) == robot
+    assert _robot_from_csv(text) == replace(robot, programs=())  # a D-H table: no programs
 
 
 # -- JSON -------------------------------------------------------------------------------
@@ -598,6 +600,7 @@ def _check_json(robot: Robot) -> None:
         "tool",
         "joints",
         "poses",
+        "programs",
     ]
     assert data["format"] == "dhsim-robot" and data["version"] == 1
     assert data["name"] == robot.name
@@ -617,7 +620,8 @@ def _check_json(robot: Robot) -> None:
     assert data["tool"] == {"xyz": list(robot.tool.xyz), "rpy": list(robot.tool.rpy)}
     assert len(data["joints"]) == robot.dof
     for got, joint in zip(data["joints"], robot.joints, strict=True):
-        assert list(got) == ["type", *order]
+        speeds = [key for key in ("vmax", "amax") if getattr(joint, key) is not None]
+        assert list(got) == ["type", *order, *speeds]
         assert got["type"] == joint.type
         for key in order:
             assert got[key] == getattr(joint, key), key
@@ -638,6 +642,7 @@ def _check_json(robot: Robot) -> None:
         base_rpy=tuple(data["base"]["rpy"]),
         tool=Tool(tuple(data["tool"]["xyz"]), tuple(data["tool"]["rpy"])),
         poses=tuple((n, tuple(v)) for n, v in data["poses"].items()),
+        programs=programs_from_data(data["programs"]),
     )
     assert rebuilt == robot
 

@@ -65,6 +65,7 @@ def _offset_robot():
         name="Puma with offsets",
         joints=joints,
         poses=(),
+        programs=(),
         base_z="-y",
         base_x="+z",
         base_xyz=(100.0, -250.0, 1200.0),

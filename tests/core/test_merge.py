@@ -76,7 +76,7 @@ def test_a_table_changed_on_both_sides_in_shape_is_one_question():
     found = merge(PUMA, mine, theirs)
     # the table, and the poses (their values follow the joints) on both sides
     keys = [c.key for c in found.conflicts]
-    assert keys[0] == "joints" and all(key.startswith("pose ") for key in keys[1:])
+    assert keys[0] == "joints" and all(key.startswith(("pose ", "program ")) for key in keys[1:])
     with pytest.raises(DhsimError, match="cannot be combined"):
         found.resolve({"joints": "mine"})  # 7 joints, and the file's 5-value poses
     assert found.resolve(dict.fromkeys(keys, "mine")) == mine

@@ -28,6 +28,7 @@ from dhsim_tui.core.files.library import bundled_names, load_robot
 from dhsim_tui.core.interop.convert import convert
 from dhsim_tui.core.interop.export import export_text, to_json, write_export
 from dhsim_tui.core.interop.importer import from_urdf, import_file
+from dhsim_tui.core.interop.urdf_export import STORED_OPTIONAL_JOINT_FIELDS
 from dhsim_tui.core.model.editing import set_units
 from dhsim_tui.core.model.robot import Joint, Robot, Tool
 from tests.cli.test_export import robots
@@ -264,7 +265,8 @@ def test_joint_dataclass_fields_are_all_stored():
     """Every field of a joint and of a robot rides along (a new field would need the
     comment to carry it, or the round trip would silently lose it)."""
     stored = _stored_json(export_text(load_robot("ur5")[0], "urdf"))
-    assert set(Joint.__dataclass_fields__) == {"type", *stored["parameter_order"]}
+    optional = set(STORED_OPTIONAL_JOINT_FIELDS)  # written when set (vmax, amax)
+    assert set(Joint.__dataclass_fields__) == {"type", *stored["parameter_order"], *optional}
     assert set(Robot.__dataclass_fields__) == {
         "name",
         "joints",
@@ -277,7 +279,9 @@ def test_joint_dataclass_fields_are_all_stored():
         "base_rpy",
         "tool",
         "poses",
+        "programs",
     }
+    assert set(stored) >= {"poses", "programs"}
 
 
 @pytest.mark.parametrize(("alpha", "tool_z"), [(68.0, 1084.518), (1.0, 1085.473)])

@@ -25,13 +25,9 @@ from textual.scrollbar import ScrollBar
 import dhsim_tui.tui.app
 from dhsim_tui.cli import main as cli
 from dhsim_tui.core import load_robot
-from dhsim_tui.terminal.charset import (
-    ascii_key,
-    ascii_text,
-    original_environ,
-    to_ascii,
-    wants_ascii,
-)
+from dhsim_tui.terminal.ascii_table import to_ascii
+from dhsim_tui.terminal.charset import ascii_key, ascii_text
+from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens.dialogs import SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen
@@ -111,7 +107,7 @@ def test_a_real_interpreter_started_in_the_c_locale_is_seen_as_ascii(variables, 
     env.update(variables)
     code = (
         "import json, os\n"
-        "from dhsim_tui.terminal.charset import original_environ, wants_ascii\n"
+        "from dhsim_tui.terminal.locale_env import original_environ, wants_ascii\n"
         "print(json.dumps([os.environ.get('LC_CTYPE'), wants_ascii(os.environ),"
         " wants_ascii(original_environ())]))"
     )

@@ -17,7 +17,8 @@ from textual.containers import Vertical
 
 from dhsim_tui.core import load, load_robot, save
 from dhsim_tui.core.model.editing import new_robot
-from dhsim_tui.tui.app import DhsimApp, crash_line
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.app_exit import crash_line
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import Confirm, SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen

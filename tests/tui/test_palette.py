@@ -214,7 +214,7 @@ async def test_no_palette_over_a_dialog():
 
 async def test_a_pose_name_is_shown_as_text_not_markup():
     robot, _ = load_robot("puma560")
-    robot = replace(robot, poses=(("[b]x[/b]", robot.home), ("[red", robot.home)))
+    robot = replace(robot, poses=(("[b]x[/b]", robot.home), ("[red", robot.home)), programs=())
     app = DhsimApp(robot, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -254,6 +254,7 @@ async def test_a_list_key_while_the_palette_leaves_does_nothing():
         palette = app.screen
         await palette.query_one(CommandList).remove()  # as when it is taken down
         palette._action_command_list("cursor_down")  # no list: nothing
+        assert palette._gather_commands("go") is None  # no search started either
         palette.dismiss()
         palette._action_command_list("cursor_down")  # leaving: nothing
         await pilot.pause()

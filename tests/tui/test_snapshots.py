@@ -72,6 +72,11 @@ def test_control_cartesian_mode(snap_compare):
     assert snap_compare(APP, press=("p", "p", "c", "down", "down"), terminal_size=(80, 24))
 
 
+def test_control_program_panel(snap_compare):
+    """g: the Puma's demo program, its steps and the one selected (issue 19)."""
+    assert snap_compare(APP, press=("g", "down"), terminal_size=(80, 24))
+
+
 # -- the views in every mode a terminal can ask for ---------------------------------
 
 

@@ -11,7 +11,8 @@ from pilot_helpers import until
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.analysis import workspace
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.screens.control import CLOUD_POINTS, ControlScreen
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.control_jobs import CLOUD_POINTS
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.screens.palette import commands_for
 from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel

@@ -39,6 +39,7 @@ from dhsim_tui.core.files.atomicfile import read_file, remove_stale_temps, write
 from dhsim_tui.core.files.formats import IMPORT_SUFFIXES
 from dhsim_tui.core.files.robotschema import _defaults, robot_from_dict, robot_to_dict
 from dhsim_tui.core.files.tomledit import update_text
+from dhsim_tui.core.files.tomlitems import section_text
 from dhsim_tui.core.files.tomlparse import parse_toml
 from dhsim_tui.core.model.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model.robot import Robot
@@ -167,17 +168,32 @@ def read_stamp(path: str | os.PathLike[str]) -> FileStamp | None:
 
 #: an array of numbers tomli_w wrote one item per line
 _NUMBER_COLUMN = re.compile(r"\[\n((?:    [-+0-9.eE]+(?:inf|nan)?,\n)+)\]")
+#: the first ``[[joints]]`` header tomli-w wrote (strings are on one line: no
+#: line of one starts with a bracket)
+_JOINTS_HEADER = re.compile(r"^\[\[joints\]\]$", re.MULTILINE)
 
 
 def dumps(robot: Robot) -> str:
-    """A fresh robot file; arrays of numbers on one line, as people write them."""
-    text = tomli_w.dumps(robot_to_dict(robot), multiline_strings=False)
-    return _NUMBER_COLUMN.sub(
+    """A fresh robot file; arrays of numbers on one line, as people write them,
+    and each program's steps one inline table a line, in a ``[programs]``
+    table before the ``[[joints]]`` (or at the end, when tomli-w wrote the
+    joints inline at the top)."""
+    data = robot_to_dict(robot)
+    programs = data.pop("programs", None)
+    text = tomli_w.dumps(data, multiline_strings=False)
+    text = _NUMBER_COLUMN.sub(
         lambda m: (
             "[" + ", ".join(item.strip().rstrip(",") for item in m.group(1).splitlines()) + "]"
         ),
         text,
     )
+    if programs is None:
+        return text
+    section = section_text("programs", programs)
+    joints = _JOINTS_HEADER.search(text)
+    if joints is None:
+        return f"{text}\n{section}"
+    return f"{text[: joints.start()]}{section}\n{text[joints.start() :]}"
 
 
 def _reads_back(text: str | None, robot: Robot) -> bool:
@@ -199,7 +215,7 @@ def render(robot: Robot, base_text: str | None = None) -> str:
         try:
             parse_toml(base)  # not TOML (or hostile): tomlkit is not given it
             data, defaults = robot_to_dict(robot, full=True), _defaults(robot)
-            text = update_text(base, data, defaults, current, ordered=("poses",))
+            text = update_text(base, data, defaults, current, ordered=("poses", "programs"))
             if "\r\n" in base and base.count("\n") == base.count("\r\n"):  # Windows lines
                 text = text.replace("\r\n", "\n").replace("\n", "\r\n")
         except Exception:  # tomlkit fails in many ways; then a fresh document is written

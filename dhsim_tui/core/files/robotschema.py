@@ -1,7 +1,8 @@
-"""The robot file's schema (the README gives it): its keys, the robot built
-from a parsed TOML document, every key checked for type and spelling
-(:func:`robot_from_dict`), and the document written for a robot
-(:func:`robot_to_dict`), with the defaults a file may leave out.
+"""The robot file's schema (docs/file-format.md gives it): its keys, the
+robot built from a parsed TOML document, every key checked for type and
+spelling (:func:`robot_from_dict`), and the document written for a robot
+(:func:`robot_to_dict`), with the defaults a file may leave out. The
+``[programs]`` table is :mod:`dhsim_tui.core.files.programschema`'s.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ import difflib
 from collections.abc import Mapping
 from typing import Any
 
+from dhsim_tui.core.files.programschema import programs_from_data, programs_to_data
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import Joint, Robot, Tool, default_limits
 from dhsim_tui.core.model.text import counted, printable, shortened
@@ -26,9 +28,12 @@ TOP_KEYS = (
     "base_rpy",
     "tool",
     "poses",
+    "programs",
     "joints",
 )
-JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max", "offset")
+JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max", "offset", "vmax", "amax")
+#: a joint's top speed and acceleration: written only when given (None: the defaults)
+JOINT_RATES = ("vmax", "amax")
 JOINT_REQUIRED = ("theta", "d", "a", "alpha")
 TOOL_KEYS = ("xyz", "rpy")
 
@@ -78,7 +83,8 @@ def _joint(data: object, number: int, units: str) -> Joint:
         key: check_number(table[key], f"{where}.{key}") if key in table else default
         for key, default in (("min", low), ("max", high), ("offset", 0.0))
     }
-    return Joint(type=joint_type, **values, **optional)  # type: ignore[arg-type]
+    rates = {key: check_number(table[key], f"{where}.{key}") for key in JOINT_RATES if key in table}
+    return Joint(type=joint_type, **values, **optional, **rates)  # type: ignore[arg-type]
 
 
 def robot_from_dict(data: Mapping[str, Any]) -> Robot:
@@ -120,6 +126,7 @@ def robot_from_dict(data: Mapping[str, Any]) -> Robot:
         base_rpy=_triple(data.get("base_rpy", [0.0, 0.0, 0.0]), "base_rpy"),
         tool=tool,
         poses=tuple(poses),
+        programs=programs_from_data(data.get("programs", {})),
     )
 
 
@@ -141,6 +148,8 @@ def robot_to_dict(robot: Robot, *, full: bool = False) -> dict[str, Any]:
         data["tool"] = {"xyz": _floats(robot.tool.xyz), "rpy": _floats(robot.tool.rpy)}
     if full or robot.poses:
         data["poses"] = {name: _floats(values) for name, values in robot.poses}
+    if full or robot.programs:
+        data["programs"] = programs_to_data(robot.programs)
     data["joints"] = [
         {"type": j.type} | dict(zip(JOINT_KEYS[1:7], _floats(_values(j)), strict=True))
         for j in robot.joints
@@ -148,6 +157,9 @@ def robot_to_dict(robot: Robot, *, full: bool = False) -> dict[str, Any]:
     for row, j in zip(data["joints"], robot.joints, strict=True):
         if full or j.offset:
             row["offset"] = float(j.offset)
+        for key in JOINT_RATES:
+            if getattr(j, key) is not None:
+                row[key] = float(getattr(j, key))
     return data
 
 
@@ -171,6 +183,7 @@ def _defaults(robot: Robot) -> dict[str, Any]:
         "base_rpy": [0.0, 0.0, 0.0],
         "tool": {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]},
         "poses": {},
+        "programs": {},
         "joints": [
             dict(zip(("min", "max"), default_limits(j.type, robot.units), strict=True))
             | {"type": "revolute", "offset": 0.0}

@@ -4,8 +4,11 @@
 should hold from now on, and changes only what differs: comments, blank lines,
 key order, quoting and the spelling of unchanged numbers all survive. A value
 that changes rewrites one line; a new key or pose adds one line next to its
-neighbours; rows of an array of tables (``[[joints]]``) are matched to the new
-rows so that inserting, deleting or moving one touches only that row.
+neighbours; rows of an array of tables (``[[joints]]``, a program's steps)
+are matched to the new rows so that inserting, deleting or moving one touches
+only that row. An array of tables inside a table (a program under
+``[programs]``) is written as inline tables, one a line
+(:mod:`dhsim_tui.core.files.tomlitems`); at the top it is ``[[name]]`` tables.
 
 The result is not trusted: :mod:`dhsim_tui.core.files.robotfile` parses it again and
 falls back to a fresh document if it does not read back exactly.
@@ -18,10 +21,21 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import tomlkit
-from tomlkit.items import AoT, Array, Comment, InlineTable, Item, Table, Whitespace
+from tomlkit.items import AoT, Array, InlineTable, Item, Table
+from tomlkit.toml_document import TOMLDocument
 
-#: the items of a container's body that are not values: comments and blank lines
-_GAP_TYPES = (Comment, Whitespace)
+from dhsim_tui.core.files.tomlitems import (
+    GAP_TYPES,
+    frozen,
+    is_rows,
+    match_rows,
+    place_gaps,
+    plain,
+    pop_gap,
+    rows_item,
+    same,
+    sync_array,
+)
 
 
 def update_text(
@@ -46,32 +60,6 @@ def update_text(
     return doc.as_string()
 
 
-# -- comparing ---------------------------------------------------------------
-
-
-def _plain(value: Any) -> Any:
-    """A tomlkit item as plain Python (numbers as float, for comparing)."""
-    if hasattr(value, "unwrap"):
-        value = value.unwrap()
-    if isinstance(value, bool | str):
-        return value
-    if isinstance(value, int | float):
-        return float(value)
-    if isinstance(value, Mapping):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_plain(v) for v in value]
-    return value
-
-
-def _same(old: Any, new: Any) -> bool:
-    """Does the file's ``old`` value read back as ``new``? (7 is 7.0; "7" is not)"""
-    old = _plain(old)
-    if isinstance(new, float):
-        return isinstance(old, float) and old == new
-    return type(old) is type(new) and old == new
-
-
 # -- tables ------------------------------------------------------------------
 
 
@@ -87,18 +75,18 @@ def _sync_table(
     defaults = defaults if isinstance(defaults, Mapping) else {}
     current = current if isinstance(current, Mapping) else {}
     for key in [k for k in table if k not in new]:
-        del table[key]
+        _drop(table, key)
     if keep_order:
         _reorder(table, new)
     for key, value in new.items():
         if key in table:
             ordered = top is not None and key in top
             _sync_value(table, key, value, defaults.get(key), current.get(key), ordered)
-        elif key in defaults and _plain(defaults[key]) == _plain(value):
+        elif key in defaults and plain(defaults[key]) == plain(value):
             continue  # left out of the file and still the default
         elif top is not None and isinstance(value, Mapping):
             skip = defaults.get(key) if isinstance(defaults.get(key), Mapping) else {}
-            kept = {k: v for k, v in value.items() if k not in skip or _plain(skip[k]) != v}
+            kept = {k: v for k, v in value.items() if k not in skip or plain(skip[k]) != v}
             _add_section(table, key, kept, list(new))
         else:
             _add_key(table, key, value, list(new))
@@ -138,49 +126,98 @@ def _sync_value(
             _sync_table(old, value, default, current, keep_order=ordered)
         else:
             table[key] = dict(value)
-    elif _is_rows(value):
-        if isinstance(old, AoT | Array) and all(isinstance(r, Table | InlineTable) for r in old):
+    elif is_rows(value):
+        rows = isinstance(old, AoT | Array) and len(old) > 0
+        if rows and all(isinstance(r, Table | InlineTable) for r in old):
             _sync_rows(old, value, default, current)
         else:
-            table[key] = [dict(v) for v in value]
+            table[key] = _new_value(table, value)
+    elif isinstance(value, list | tuple) and not value and isinstance(old, AoT | Array):
+        if len(old):  # no rows left (a program without steps): an empty array
+            _drop(table, key, tomlkit.array())
     elif isinstance(value, list | tuple):
         if isinstance(old, Array):
-            _sync_array(old, list(value))
+            sync_array(old, list(value))
         else:
             table[key] = list(value)
-    elif not _same(old, value):
+    elif not same(old, value):
         table[key] = value
 
 
-def _is_rows(value: Any) -> bool:
-    return (
-        isinstance(value, list | tuple)
-        and bool(value)
-        and all(isinstance(v, Mapping) for v in value)
-    )
+def _new_value(table: Any, value: Any) -> Any:
+    """``value`` as it is written into ``table``: an array of tables below the
+    top as inline tables, one a line (a program's steps), unless its
+    neighbours are ``[[programs.name]]`` tables; the rest as tomlkit makes it
+    (``[[joints]]`` at the top)."""
+    if is_rows(value) and not isinstance(table, TOMLDocument):
+        if isinstance(table, Table) and any(isinstance(v, AoT) for _, v in table.value.body):
+            return [dict(row) for row in value]
+        return rows_item(value)
+    if isinstance(value, tuple):
+        return list(value)
+    return value
 
 
 def _add_key(table: Any, key: str, value: Any, order: list[str]) -> None:
     """Add ``key`` after the nearest key that comes before it in ``order``
     (or before the first key after it), so the file keeps the schema's order."""
+    if not isinstance(value, Item):
+        value = _new_value(table, value)
     if isinstance(table, InlineTable):
         table[key] = value
         return
     container = table.value if isinstance(table, Table) else table
-    plain = {
+    if not isinstance(value, Item) and is_rows(value):  # [[programs.name]] after its kind
+        _append_rows(container, key, value)
+        return
+    placed = {
         str(k.key): i
         for i, (k, item) in enumerate(container.body)
         if k is not None and not isinstance(item, Table | AoT)
     }
     position = order.index(key)
-    before = [k for k in order[:position] if k in plain]
-    after = [k for k in order[position + 1 :] if k in plain]
+    before = [k for k in order[:position] if k in placed]
+    after = [k for k in order[position + 1 :] if k in placed]
     if before:
         container._insert_after(before[-1], key, value)
     elif after:
-        container._insert_at(plain[after[0]], key, value)
+        container._insert_at(placed[after[0]], key, value)
     else:
         container.append(key, value)
+
+
+def _append_rows(container: Any, key: str, rows: list) -> None:
+    """A new array of tables after the last one in ``container``; it takes
+    over the comments that ended that one (they head what follows)."""
+    last = next((v for _, v in reversed(container.body) if isinstance(v, AoT) and len(v)), None)
+    gap = pop_gap(last[-1]) if last is not None else []
+    container.append(key, rows)
+    container.item(key)[-1].value.body.extend(gap)
+
+
+def _drop(table: Any, key: str, value: Any = None) -> None:
+    """Delete ``key`` (or set it to ``value``). The comments that end an
+    array of tables head what follows it: they stay, before the next table
+    or at the end of ``table``."""
+    item = table[key]
+    rows = isinstance(item, AoT) and len(item) > 0 and not isinstance(table, InlineTable)
+    gap = pop_gap(item[-1]) if rows else []
+    container = table.value if isinstance(table, Table) else table
+    names = [str(k.key) for k, _ in container.body if k is not None] if gap else [key]
+    later = names[names.index(key) + 1 :]
+    if value is None:
+        del table[key]
+    else:
+        table[key] = value
+    if not gap:
+        return
+    for name in later:
+        following = container.item(name)
+        first = following[0] if isinstance(following, AoT) and len(following) else following
+        if isinstance(first, Table):
+            first.trivia.indent = "".join(v.as_string() for _, v in gap) + first.trivia.indent
+            return
+    container.body.extend(gap)
 
 
 def _add_section(doc: Any, key: str, value: Mapping[str, Any], order: list[str]) -> None:
@@ -189,7 +226,7 @@ def _add_section(doc: Any, key: str, value: Mapping[str, Any], order: list[str])
     the end."""
     section = tomlkit.table()
     for name, item in value.items():
-        section[name] = list(item) if isinstance(item, tuple) else item
+        section[name] = _new_value(section, item)
     later = set(order[order.index(key) + 1 :])
     body = doc.body
     for index, (k, item) in enumerate(body):
@@ -197,107 +234,34 @@ def _add_section(doc: Any, key: str, value: Mapping[str, Any], order: list[str])
             while (
                 index > 0
                 and body[index - 1][0] is None
-                and isinstance(body[index - 1][1], _GAP_TYPES)
+                and isinstance(body[index - 1][1], GAP_TYPES)
             ):
                 index -= 1
             section.trivia.indent = "\n"
             if index > 0 and isinstance(body[index - 1][1], Table):
                 # the comments that end the table before head the next one: keep them there
-                section.value.body.extend(_pop_gap(body[index - 1][1]))
+                section.value.body.extend(pop_gap(body[index - 1][1]))
             doc._insert_at(index, key, section)
             return
     doc.append(key, section)
-
-
-# -- arrays of numbers ----------------------------------------------------------
-
-
-def _sync_array(array: Array, new: list) -> None:
-    """Edit ``array`` element by element into ``new``, keeping unchanged
-    elements (and the array's layout) as written."""
-    old = [_plain(v) for v in array]
-    if not all(isinstance(v, float | str) for v in old):
-        raise ValueError("an array of something other than numbers")
-    if len(old) == len(new):  # a changed value (or two swapped) stays in its place
-        for k, value in enumerate(new):
-            if not _same(array[k], value):
-                array[k] = value
-        return
-    matcher = difflib.SequenceMatcher(None, old, new, autojunk=False)
-    for tag, i1, i2, j1, j2 in reversed(matcher.get_opcodes()):
-        if tag == "equal":
-            continue
-        common = min(i2 - i1, j2 - j1)
-        for k in range(common):
-            if not _same(array[i1 + k], new[j1 + k]):
-                array[i1 + k] = new[j1 + k]
-        for k in reversed(range(i1 + common, i2)):
-            del array[k]
-        for k in range(j1 + common, j2):
-            _insert(array, i1 + (k - j1), new[k])
-
-
-def _insert(array: Array, index: int, value: Any) -> None:
-    """Insert keeping the array's spacing (tomlkit writes ``[new,old]`` at 0)."""
-    if index == 0 and len(array):
-        first = array[0]
-        array.insert(1, first)
-        array[0] = value
-    else:
-        array.insert(index, value)
 
 
 # -- arrays of tables ([[joints]] or an inline array of tables) -------------------
 
 
 def _row_key(row: Any, keys: Sequence[str]) -> tuple:
-    plain = _plain(row)
-    return tuple((k, plain.get(k, None)) for k in keys)
-
-
-def _match(old: list[tuple], new: list[tuple]) -> list[int | None]:
-    """For each new row, the old row it reuses (or None for a fresh one):
-    unchanged runs first, then moved rows, then changed rows in place. When
-    as many rows stay unchanged in their places as that keeps, and it would
-    make a fresh row, every row stays in its place instead: of two equal
-    rows, the one edited is changed where it is (not dropped and written anew)."""
-    plan: list[int | None] = [None] * len(new)
-    used: set[int] = set()
-    opcodes = difflib.SequenceMatcher(None, old, new, autojunk=False).get_opcodes()
-    for tag, i1, i2, j1, _j2 in opcodes:
-        if tag == "equal":
-            for k in range(i2 - i1):
-                plan[j1 + k] = i1 + k
-                used.add(i1 + k)
-    for j, key in enumerate(new):
-        if plan[j] is None:
-            for i, old_key in enumerate(old):
-                if i not in used and old_key == key:
-                    plan[j] = i
-                    used.add(i)
-                    break
-    for tag, i1, i2, j1, j2 in opcodes:
-        if tag == "replace":
-            free_old = [i for i in range(i1, i2) if i not in used]
-            free_new = [j for j in range(j1, j2) if plan[j] is None]
-            for i, j in zip(free_old, free_new, strict=False):
-                plan[j] = i
-                used.add(i)
-    if len(old) == len(new) and None in plan:
-        unchanged = sum(1 for j, i in enumerate(plan) if i is not None and old[i] == new[j])
-        if sum(a == b for a, b in zip(old, new, strict=True)) >= unchanged:
-            return list(range(len(new)))
-    return plan
+    values = plain(row)
+    return tuple((k, frozen(values.get(k, None))) for k in keys)
 
 
 def _sync_rows(rows: AoT | Array, new: Sequence[Mapping], defaults: Any, current: Any) -> None:
-    keys = list(new[0])
+    keys = list(dict.fromkeys(key for row in new for key in row))  # rows may differ in keys
     old_rows = list(rows)
     if isinstance(current, list) and len(current) == len(old_rows):
         old_keys = [_row_key(row, keys) for row in current]
     else:
         old_keys = [_row_key(row, keys) for row in old_rows]
-    plan = _match(old_keys, [_row_key(row, keys) for row in new])
+    plan = match_rows(old_keys, [_row_key(row, keys) for row in new])
     given = defaults if isinstance(defaults, list) else []
     row_defaults = [d if isinstance(d, Mapping) else {} for d in given[: len(new)]]
     row_defaults += [{}] * (len(new) - len(row_defaults))
@@ -311,12 +275,29 @@ def _sync_rows(rows: AoT | Array, new: Sequence[Mapping], defaults: Any, current
         ]
         _rearrange(rows, old_rows, plan, fresh)
     for j, i in enumerate(plan):
-        if i is not None:
-            _sync_table(old_rows[i], new[j], row_defaults[j], None)
+        if i is None:
+            continue
+        row = old_rows[i]
+        if isinstance(row, InlineTable) and _reshaped(row, new[j], row_defaults[j]):
+            # keys come or go: the row written anew (tomlkit would space it oddly)
+            kept = {
+                k: v
+                for k, v in new[j].items()
+                if k in row or not _is_default(k, v, row_defaults[j])
+            }
+            rows[j] = _fresh_row(rows, kept)
+        else:
+            _sync_table(row, new[j], row_defaults[j], None)
+
+
+def _reshaped(row: InlineTable, new: Mapping[str, Any], defaults: Mapping[str, Any]) -> bool:
+    """Would syncing ``row`` to ``new`` add or remove a key?"""
+    gone = any(key not in new for key in row)
+    return gone or any(k not in row and not _is_default(k, v, defaults) for k, v in new.items())
 
 
 def _is_default(key: str, value: Any, defaults: Mapping[str, Any]) -> bool:
-    return key in defaults and _plain(defaults[key]) == _plain(value)
+    return key in defaults and plain(defaults[key]) == plain(value)
 
 
 def _fresh_row(rows: AoT | Array, values: Mapping[str, Any]) -> Item:
@@ -340,7 +321,7 @@ def _rearrange(rows: AoT | Array, old_rows: list, plan: list[int | None], new) -
     is_aot = isinstance(rows, AoT)
     gaps: list[list] = []
     if is_aot:
-        gaps = [_pop_gap(row) for row in old_rows]
+        gaps = [pop_gap(row) for row in old_rows]
     kept = set(plan)
     for i in reversed(range(len(old_rows))):
         if i not in kept:
@@ -357,36 +338,4 @@ def _rearrange(rows: AoT | Array, old_rows: list, plan: list[int | None], new) -
             rows.insert(j, row)
             order.insert(j, order.pop(k))
     if is_aot:
-        _place_gaps(list(rows), plan, gaps, len(old_rows))
-
-
-def _pop_gap(row: Table) -> list:
-    """Take the comments and blank lines that end ``row`` (they sit above the
-    next row's header, or above what follows the array)."""
-    body = row.value.body
-    gap = []
-    while body and body[-1][0] is None and isinstance(body[-1][1], _GAP_TYPES):
-        gap.insert(0, body.pop())
-    return gap
-
-
-def _place_gaps(tables: list, plan: list[int | None], gaps: list[list], count: int) -> None:
-    """Row i's heading is gaps[i - 1], written before its header; the last gap
-    stays at the end. A deleted row's heading moves to the next surviving row."""
-    heading: dict[int, list] = {i: gaps[i - 1] for i in range(1, count)}
-    carried: list = []
-    kept = set(plan)
-    for i in range(count):
-        if i not in kept:
-            carried += heading.pop(i, [])
-        elif carried:
-            heading[i] = carried + heading.get(i, [])
-            carried = []
-    for j, table in enumerate(tables):
-        own = heading.get(plan[j], []) if plan[j] is not None else []
-        if j > 0 and not own:
-            own = [(None, Whitespace("\n"))]
-        text = "".join(item.as_string() for _, item in own)
-        table.trivia.indent = text + table.trivia.indent
-    final = carried + (gaps[count - 1] if count else [])
-    tables[-1].value.body.extend(final)
+        place_gaps(list(rows), plan, gaps, len(old_rows))

@@ -54,15 +54,18 @@ one. Then one row per joint, in order: ``joint`` is its number from 1,
 dhsim, theta (revolute) or d (prismatic) is the D-H variable's value at
 home, the joint value is q with theta = q + offset (d = q + offset), and
 min/max/poses are in q. The first line that does not begin with ``#`` is
-the header; no comment follows it.
+the header; no comment follows it. A D-H table has no programs: they are
+the JSON's and the URDF's (a program's trajectory is ``dhsim run --csv``).
 
 JSON (format ``dhsim-robot`` version 1)
 ---------------------------------------
 One object, keys in a fixed order: ``format``, ``version``, ``name``,
 ``units`` ({length, angle}), ``convention``, ``parameter_order``,
 ``joint_value``, ``base`` ({height, z, x, xyz, rpy}), ``tool`` ({xyz, rpy}),
-``joints`` (objects: type, then the parameters in ``parameter_order``) and
-``poses`` (name -> joint values, in order). Finite numbers only.
+``joints`` (objects: type, then the parameters in ``parameter_order``,
+then ``vmax`` and ``amax`` when the joint has them), ``poses`` (name ->
+joint values, in order) and ``programs`` (name -> steps, as the robot
+file's ``[programs]`` table). Finite numbers only.
 """
 
 from __future__ import annotations
@@ -75,17 +78,14 @@ from pathlib import Path
 
 from dhsim_tui.core.files.atomicfile import write_file
 from dhsim_tui.core.files.formats import EXPORT_FORMATS
-from dhsim_tui.core.interop.urdf_export import to_urdf
+from dhsim_tui.core.interop.urdf_export import dhsim_fields, to_urdf
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.validation import fmt as number_text
 
 CSV_FORMAT = "dhsim-dh-table 1"
-JSON_FORMAT = "dhsim-robot"
-JSON_VERSION = 1
 PARAMETER_ORDER: tuple[str, ...] = ("theta", "d", "a", "alpha", "offset", "min", "max")
-JOINT_VALUE = "theta = q + offset (revolute), d = q + offset (prismatic)"
 
 
 # -- the one entry point --------------------------------------------------------------
@@ -162,32 +162,8 @@ def to_csv(robot: Robot) -> str:
 
 
 # -- JSON -------------------------------------------------------------------------------
-def _floats(values) -> list[float]:
-    return [float(v) for v in values]
-
-
 def to_json(robot: Robot) -> str:
-    """The whole robot as JSON (see the module's docstring)."""
-    data = {
-        "format": JSON_FORMAT,
-        "version": JSON_VERSION,
-        "name": robot.name,
-        "units": {"length": robot.units, "angle": "deg"},
-        "convention": robot.convention,
-        "parameter_order": list(PARAMETER_ORDER),
-        "joint_value": JOINT_VALUE,
-        "base": {
-            "height": float(robot.base_height),
-            "z": robot.base_z,
-            "x": robot.base_x,
-            "xyz": _floats(robot.base_xyz),
-            "rpy": _floats(robot.base_rpy),
-        },
-        "tool": {"xyz": _floats(robot.tool.xyz), "rpy": _floats(robot.tool.rpy)},
-        "joints": [
-            {"type": j.type, **{name: float(getattr(j, name)) for name in PARAMETER_ORDER}}
-            for j in robot.joints
-        ],
-        "poses": {name: _floats(values) for name, values in robot.poses},
-    }
+    """The whole robot as JSON (see the module's docstring): the object a
+    URDF export stores in its comment, programs and top speeds included."""
+    data = dhsim_fields(robot)
     return json.dumps(data, indent=2, allow_nan=False, ensure_ascii=False) + "\n"

@@ -43,6 +43,7 @@ import math
 import numpy as np
 
 from dhsim_tui.core.analysis.workspace import reach
+from dhsim_tui.core.files.programschema import programs_to_data
 from dhsim_tui.core.interop.convert import convert
 from dhsim_tui.core.interop.urdf_xml import DHSIM_COMMENT
 from dhsim_tui.core.model.kinematics import robot_base
@@ -69,6 +70,8 @@ STORED_FORMAT = "dhsim-robot"
 STORED_VERSION = 1
 #: the JSON export's joint fields, in its order
 STORED_JOINT_FIELDS = ("theta", "d", "a", "alpha", "offset", "min", "max")
+#: a joint's fields stored only when set (top speed and acceleration)
+STORED_OPTIONAL_JOINT_FIELDS = ("vmax", "amax")
 STORED_JOINT_VALUE = "theta = q + offset (revolute), d = q + offset (prismatic)"
 LINK_RGBA = "0.55 0.6 0.7 1"
 RAIL_RGBA = "0.85 0.55 0.2 1"
@@ -282,10 +285,19 @@ def dhsim_fields(robot: Robot) -> dict:
         },
         "tool": {"xyz": floats(robot.tool.xyz), "rpy": floats(robot.tool.rpy)},
         "joints": [
-            {"type": j.type, **{name: float(getattr(j, name)) for name in STORED_JOINT_FIELDS}}
+            {
+                "type": j.type,
+                **{name: float(getattr(j, name)) for name in STORED_JOINT_FIELDS},
+                **{
+                    name: float(getattr(j, name))
+                    for name in STORED_OPTIONAL_JOINT_FIELDS
+                    if getattr(j, name) is not None
+                },
+            }
             for j in robot.joints
         ],
         "poses": {name: floats(values) for name, values in robot.poses},
+        "programs": programs_to_data(robot.programs),
     }
 
 

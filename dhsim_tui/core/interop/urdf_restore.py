@@ -13,11 +13,17 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
+from dhsim_tui.core.files.programschema import programs_from_data
 from dhsim_tui.core.interop.convert import convert
 from dhsim_tui.core.interop.imported import ImportResult, quoted
 from dhsim_tui.core.interop.urdf_chain import UrdfChain
 from dhsim_tui.core.interop.urdf_check import _checked, _joint_lines, _Reference
-from dhsim_tui.core.interop.urdf_export import STORED_FORMAT, STORED_JOINT_FIELDS, STORED_VERSION
+from dhsim_tui.core.interop.urdf_export import (
+    STORED_FORMAT,
+    STORED_JOINT_FIELDS,
+    STORED_OPTIONAL_JOINT_FIELDS,
+    STORED_VERSION,
+)
 from dhsim_tui.core.interop.urdf_xml import DHSIM_COMMENT
 from dhsim_tui.core.model.editing import set_units
 from dhsim_tui.core.model.errors import DhsimError
@@ -115,6 +121,9 @@ def _stored_robot(text: str) -> Robot:
         if missing:
             raise DhsimError(f"joints[{number}]: no {', '.join(missing)}")
         values = {key: _number(joint[key]) for key in STORED_JOINT_FIELDS}
+        for key in STORED_OPTIONAL_JOINT_FIELDS:
+            if key in joint:
+                values[key] = _number(joint[key])
         rows.append(Joint(type=joint["type"], **values))
     return Robot(
         name=data.get("name"),  # type: ignore[arg-type]
@@ -128,6 +137,7 @@ def _stored_robot(text: str) -> Robot:
         base_rpy=_numbers(base.get("rpy")),  # type: ignore[arg-type]
         tool=Tool(_numbers(tool.get("xyz")), _numbers(tool.get("rpy"))),  # type: ignore[arg-type]
         poses=tuple((key, _numbers(values)) for key, values in poses.items()),  # type: ignore[misc]
+        programs=programs_from_data(data.get("programs", {})),
     )
 
 

@@ -2,6 +2,9 @@
 
 The editor screen is a thin layer over these: a rejected edit leaves the
 robot in memory exactly as it was, and every accepted one can be undone.
+Joint values follow the joints: an edit that adds, deletes, moves or retypes
+a joint, or changes the unit, changes the named poses and the programs' own
+joint values (a move's ``to`` list) with it.
 """
 
 from __future__ import annotations
@@ -10,6 +13,7 @@ import re
 from dataclasses import dataclass, field, replace
 
 from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.program import Program, Step
 from dhsim_tui.core.model.robot import (
     MAX_JOINTS,
     MIN_JOINTS,
@@ -77,10 +81,20 @@ def toggle_type(robot: Robot, index: int) -> Robot:
     low, high = default_limits(new_type, robot.units)
     home = joint.d if new_type == "prismatic" else joint.theta
     low, high = min(low, home), max(high, home)
-    # the offset was in the old variable's unit: the new variable starts without one
-    toggled = replace(joint, type=new_type, min=low, max=high, offset=0.0)
+    # the offset, top speed and acceleration were in the old variable's unit:
+    # the new variable starts without them
+    toggled = replace(joint, type=new_type, min=low, max=high, offset=0.0, vmax=None, amax=None)
     poses = _pose_values(robot, index, lambda _values: toggled.home)
-    return _rebuild(robot, joints=_joints(robot, index, toggled), poses=poses)
+
+    def retyped(values: tuple[float, ...]) -> tuple[float, ...]:
+        return (*values[:index], toggled.home, *values[index + 1 :])
+
+    return _rebuild(
+        robot,
+        joints=_joints(robot, index, toggled),
+        poses=poses,
+        programs=_program_values(robot, retyped),
+    )
 
 
 def _pose_values(robot: Robot, index: int, value_of) -> tuple:
@@ -93,6 +107,25 @@ def _pose_values(robot: Robot, index: int, value_of) -> tuple:
     return tuple(out)
 
 
+def _program_values(robot: Robot, change, speed=None) -> tuple[Program, ...]:
+    """The programs with every move's own joint values (a ``to`` list, not a
+    pose name) replaced by ``change(values)``, and, given ``speed``, every
+    linear move's speed by ``speed(value)``."""
+
+    def step(item: Step) -> Step:
+        if item.is_wait:
+            return item
+        if item.to is not None and not isinstance(item.to, str):
+            item = replace(item, to=tuple(change(tuple(item.to))))
+        if speed is not None and item.move == "linear" and item.speed is not None:
+            item = replace(item, speed=speed(item.speed))
+        return item
+
+    return tuple(
+        replace(program, steps=tuple(step(s) for s in program.steps)) for program in robot.programs
+    )
+
+
 def insert_joint(robot: Robot, after: int) -> Robot:
     """A new revolute joint (all zeros, default limits) after joint ``after``."""
     if robot.dof >= MAX_JOINTS:
@@ -100,18 +133,25 @@ def insert_joint(robot: Robot, after: int) -> Robot:
     position = after + 1
     joint = Joint()
     joints = (*robot.joints[:position], joint, *robot.joints[position:])
-    poses = tuple(
-        (name, (*values[:position], joint.home, *values[position:])) for name, values in robot.poses
-    )
-    return _rebuild(robot, joints=joints, poses=poses)
+
+    def inserted(values: tuple[float, ...]) -> tuple[float, ...]:
+        return (*values[:position], joint.home, *values[position:])
+
+    poses = tuple((name, inserted(values)) for name, values in robot.poses)
+    programs = _program_values(robot, inserted)
+    return _rebuild(robot, joints=joints, poses=poses, programs=programs)
 
 
 def delete_joint(robot: Robot, index: int) -> Robot:
     if robot.dof <= MIN_JOINTS:
         raise DhsimError(f"a robot needs at least {MIN_JOINTS} joint")
     joints = robot.joints[:index] + robot.joints[index + 1 :]
-    poses = tuple((name, values[:index] + values[index + 1 :]) for name, values in robot.poses)
-    return _rebuild(robot, joints=joints, poses=poses)
+
+    def deleted(values: tuple[float, ...]) -> tuple[float, ...]:
+        return values[:index] + values[index + 1 :]
+
+    poses = tuple((name, deleted(values)) for name, values in robot.poses)
+    return _rebuild(robot, joints=joints, poses=poses, programs=_program_values(robot, deleted))
 
 
 def move_joint(robot: Robot, index: int, delta: int) -> Robot:
@@ -126,7 +166,8 @@ def move_joint(robot: Robot, index: int, delta: int) -> Robot:
         return tuple(items)
 
     poses = tuple((name, swap(values)) for name, values in robot.poses)
-    return _rebuild(robot, joints=swap(robot.joints), poses=poses)
+    programs = _program_values(robot, swap)
+    return _rebuild(robot, joints=swap(robot.joints), poses=poses, programs=programs)
 
 
 def set_name(robot: Robot, text: str) -> Robot:
@@ -150,18 +191,18 @@ def set_units(robot: Robot, units: str) -> Robot:
                 "max": factor_of(j.max),
                 "offset": factor_of(j.offset),
             }
+            for name in ("vmax", "amax"):  # units a second (a second squared)
+                if getattr(j, name) is not None:
+                    changes[name] = factor_of(getattr(j, name))
         return replace(j, **changes)
 
-    poses = tuple(
-        (
-            name,
-            tuple(
-                v if j.is_revolute else factor_of(v)
-                for j, v in zip(robot.joints, values, strict=True)
-            ),
+    def converted(values: tuple[float, ...]) -> tuple[float, ...]:
+        return tuple(
+            v if j.is_revolute else factor_of(v) for j, v in zip(robot.joints, values, strict=True)
         )
-        for name, values in robot.poses
-    )
+
+    poses = tuple((name, converted(values)) for name, values in robot.poses)
+    programs = _program_values(robot, converted, factor_of)  # a linear speed: units a second
     tool = replace(robot.tool, xyz=tuple(factor_of(v) for v in robot.tool.xyz))
     return _rebuild(
         robot,
@@ -171,6 +212,7 @@ def set_units(robot: Robot, units: str) -> Robot:
         base_xyz=tuple(factor_of(v) for v in robot.base_xyz),
         tool=tool,
         poses=poses,
+        programs=programs,
     )
 
 
@@ -232,7 +274,27 @@ def set_pose(robot: Robot, name: str, values: tuple[float, ...]) -> Robot:
 
 
 def delete_pose(robot: Robot, name: str) -> Robot:
+    """Without the named pose (refused, naming the step, while a program moves to it)."""
     return _rebuild(robot, poses=tuple(p for p in robot.poses if p[0] != name))
+
+
+def set_program(robot: Robot, program: Program) -> Robot:
+    """Add a program, or replace the one of its name where it stands (checked)."""
+    name = program.name.strip()
+    if not name:
+        raise DhsimError("a program needs a name")
+    program = replace(program, name=name)
+    names = robot.program_names
+    if name in names:
+        index = names.index(name)
+        programs = (*robot.programs[:index], program, *robot.programs[index + 1 :])
+    else:
+        programs = (*robot.programs, program)
+    return _rebuild(robot, programs=programs)
+
+
+def delete_program(robot: Robot, name: str) -> Robot:
+    return _rebuild(robot, programs=tuple(p for p in robot.programs if p.name != name))
 
 
 def new_robot(name: str = "new robot", joints: int = 1, units: str = "mm") -> Robot:

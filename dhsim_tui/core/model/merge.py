@@ -9,8 +9,9 @@ changed takes theirs, a field we both changed to different values is a
 
 Fields are the robot's parts a user edits one at a time: the name, units,
 convention, base and tool fields; each joint's type, theta, d, a, alpha,
-offset, min and max (or the whole table, when the joints were added,
-deleted or moved on either side); each named pose. A change of units on one
+offset, min, max, vmax and amax (or the whole table, when the joints were
+added, deleted or moved on either side); each named pose; each program,
+whole (its steps are one field), by name. A change of units on one
 side converts the other two robots to the new unit first, so their lengths
 compare; a change of units on both sides to different units is one
 conflict over the whole robot. The merged robot is built as a new
@@ -26,6 +27,7 @@ from typing import Literal
 
 from dhsim_tui.core.model.editing import set_units
 from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.program import Program
 from dhsim_tui.core.model.robot import Joint, Robot, Tool
 from dhsim_tui.core.model.validation import fmt
 
@@ -48,6 +50,8 @@ JOINT_FIELDS = tuple(f.name for f in fields(Joint))
 TABLE = "joints"
 #: the key of the whole robot (both sides changed its units differently)
 WHOLE = "robot"
+#: a program's steps, read out in a conflict, are shortened past this
+PROGRAM_TEXT_CHARS = 120
 
 
 @dataclass(frozen=True)
@@ -70,6 +74,12 @@ def _text(value: object) -> str:
         return ", ".join(_text(v) for v in value)
     if isinstance(value, Joint):
         return f"{value.type} theta {fmt(value.theta)} d {fmt(value.d)} a {fmt(value.a)}"
+    if isinstance(value, Program):
+        steps = "; ".join(step.describe() for step in value.steps) or "no steps"
+        if len(steps) > PROGRAM_TEXT_CHARS:
+            steps = steps[: PROGRAM_TEXT_CHARS - 1] + "…"
+        count = len(value.steps)
+        return f"{count} step{'' if count == 1 else 's'}: {steps}"
     return str(value)
 
 
@@ -95,11 +105,14 @@ def _flat(robot: Robot, per_joint: bool) -> dict[str, object]:
         out[TABLE] = robot.joints
     for name, values in robot.poses:
         out[f"pose {name}"] = values
+    for program in robot.programs:
+        out[f"program {program.name}"] = program
     return out
 
 
 def _label(key: str) -> str:
-    """What a field is called in a question: ``joint 1 max``, ``base xyz``, ``pose qr``."""
+    """What a field is called in a question: ``joint 1 max``, ``base xyz``,
+    ``pose qr``, ``program demo``."""
     return key.replace("_", " ")
 
 
@@ -114,6 +127,7 @@ class Merge:
     conflicts: tuple[Conflict, ...]
     per_joint: bool
     pose_order: tuple[str, ...] = field(default=())
+    program_order: tuple[str, ...] = field(default=())
 
     def resolve(self, choices: Mapping[str, Side]) -> Robot:
         """The merged robot, each conflict settled by ``choices`` (a key
@@ -127,10 +141,16 @@ class Merge:
         for conflict in self.conflicts:
             side = mine if choices.get(conflict.key) == "mine" else theirs
             values[conflict.key] = side.get(conflict.key)
-        return _build(values, self.per_joint, self.pose_order, len(self.theirs.joints))
+        orders = (self.pose_order, self.program_order)
+        return _build(values, self.per_joint, orders, len(self.theirs.joints))
 
 
-def _build(values: dict[str, object], per_joint: bool, order: tuple[str, ...], dof: int) -> Robot:
+def _build(
+    values: dict[str, object],
+    per_joint: bool,
+    orders: tuple[tuple[str, ...], tuple[str, ...]],
+    dof: int,
+) -> Robot:
     if per_joint:
         joints = tuple(
             Joint(**{name: values[f"joint {i} {name}"] for name in JOINT_FIELDS})
@@ -138,8 +158,16 @@ def _build(values: dict[str, object], per_joint: bool, order: tuple[str, ...], d
         )
     else:
         joints = values[TABLE]  # type: ignore[assignment]
+    pose_order, program_order = orders
     poses = tuple(
-        (name, values[f"pose {name}"]) for name in order if values.get(f"pose {name}") is not None
+        (name, values[f"pose {name}"])
+        for name in pose_order
+        if values.get(f"pose {name}") is not None
+    )
+    programs = tuple(
+        values[f"program {name}"]
+        for name in program_order
+        if values.get(f"program {name}") is not None
     )
     try:
         return Robot(
@@ -154,6 +182,7 @@ def _build(values: dict[str, object], per_joint: bool, order: tuple[str, ...], d
             base_rpy=values["base_rpy"],  # type: ignore[arg-type]
             tool=Tool(values["tool_xyz"], values["tool_rpy"]),  # type: ignore[arg-type]
             poses=poses,  # type: ignore[arg-type]
+            programs=programs,  # type: ignore[arg-type]
         )
     except DhsimError as exc:
         raise DhsimError(f"your changes and the file's cannot be combined: {exc}") from None
@@ -185,4 +214,5 @@ def merge(base: Robot, mine: Robot, theirs: Robot) -> Merge:
             merged[key] = now_theirs
             conflicts.append(Conflict(key, _label(key), _text(now_mine), _text(now_theirs)))
     order = tuple(dict.fromkeys([name for name, _ in theirs.poses] + [n for n, _ in mine.poses]))
-    return Merge(base, mine, theirs, merged, tuple(conflicts), per_joint, order)
+    programs = tuple(dict.fromkeys(theirs.program_names + mine.program_names))
+    return Merge(base, mine, theirs, merged, tuple(conflicts), per_joint, order, programs)

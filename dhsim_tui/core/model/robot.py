@@ -15,6 +15,7 @@ from functools import cached_property
 
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.kinematics import Kinematics
+from dhsim_tui.core.model.program import Program
 from dhsim_tui.core.model.text import printable, shortened
 from dhsim_tui.core.model.units import (
     AXES,
@@ -82,6 +83,10 @@ class Joint:
     min: float = -REVOLUTE_LIMIT_DEG
     max: float = REVOLUTE_LIMIT_DEG
     offset: float = 0.0
+    #: top speed and acceleration (deg/s, deg/s² or robot units); None: the
+    #: defaults (core.model.program.top_speed)
+    vmax: float | None = None
+    amax: float | None = None
 
     @property
     def is_revolute(self) -> bool:
@@ -154,6 +159,8 @@ class Robot:
     base_rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
     tool: Tool = field(default_factory=Tool)
     poses: tuple[tuple[str, tuple[float, ...]], ...] = ()
+    #: named lists of moves (core.model.program), in file order
+    programs: tuple[Program, ...] = ()
 
     def __post_init__(self) -> None:
         check_robot(self)
@@ -210,6 +217,21 @@ class Robot:
         raise DhsimError(
             f"robot {printable(repr(shortened(self.name)))} has no pose named "
             f"{printable(repr(shortened(name)))} (poses: {known})"
+        )
+
+    @property
+    def program_names(self) -> tuple[str, ...]:
+        return tuple(program.name for program in self.programs)
+
+    def program(self, name: str) -> Program:
+        """The named program; a clear error if there is none."""
+        for program in self.programs:
+            if program.name == name:
+                return program
+        known = printable(shortened(", ".join(self.program_names) or "none"))
+        raise DhsimError(
+            f"robot {printable(repr(shortened(self.name)))} has no program named "
+            f"{printable(repr(shortened(name)))} (programs: {known})"
         )
 
     def mm(self, value_mm: float) -> float:

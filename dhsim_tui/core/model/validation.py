@@ -13,6 +13,7 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.program import check_programs
 from dhsim_tui.core.model.text import control_character, counted, printable, shortened
 from dhsim_tui.core.model.units import (
     AXES,
@@ -144,6 +145,12 @@ def check_joint(joint: Joint, number: int, units: str) -> None:
             f"{where}.{joint.variable}: home value {fmt(joint.home)} {unit}{shifted} is "
             f"outside the joint's limits {fmt(joint.min)}..{fmt(joint.max)} {unit}"
         )
+    for name, per in (("vmax", "/s"), ("amax", "/s²")):
+        value = getattr(joint, name)
+        if value is not None and check_number(value, f"{where}.{name}") <= 0:
+            raise DhsimError(
+                f"{where}.{name}: must be greater than 0 {unit}{per}, not {fmt(value)}"
+            )
 
 
 def check_triple(values: object, where: str, units: str | None) -> None:
@@ -219,6 +226,7 @@ def check_robot(robot: Robot) -> None:
             raise DhsimError(f"{where}: the name is used twice")
         seen.add(name)
         check_joint_values(robot, values, where)
+    check_programs(robot)
 
 
 def check_joint_values(robot: Robot, q: object, where: str = "q") -> tuple[float, ...]:

@@ -11,30 +11,28 @@ drawing is coalesced: a change marks the screen dirty and queues one redraw,
 at most one a frame (1/60 s), so a burst of auto-repeat is drawn a few times,
 not once per key, and never builds a backlog.
 
-(About 450 lines: it answers every panel's messages and runs the three
-background jobs, b's search, W's sampling and smooth moves; each is a few
-lines of glue over the core, and split further one flow would be spread
-over several files.)
+(About 700 lines, on purpose: this is where every panel's messages are
+answered, and where b's search, W's sampling and smooth moves start and end.
+Each is a few lines of glue over the core (:mod:`.control_jobs` runs the
+searches, :mod:`.control_program` the programs); split by feature again, a
+key's path would be spread over several classes that reach into one
+another, the mixins this replaced.)
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from functools import partial
 from time import monotonic
 
-import numpy as np
 from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
 from textual.events import DescendantFocus, Resize
-from textual.message import Message
 from textual.reactive import reactive
 from textual.screen import Screen
 from textual.widgets import Footer, Static
-from textual.worker import get_current_worker
 
-from dhsim_tui.core.analysis import workspace
 from dhsim_tui.core.analysis.jacobian import dexterity, jacobian_from_frames
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.kinematics import read_out
@@ -42,7 +40,6 @@ from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.validation import fmt
 from dhsim_tui.core.motion.branches import (
-    SEARCH_ERRORS,
     BranchCache,
     BranchCycle,
     branch_key,
@@ -72,17 +69,27 @@ from dhsim_tui.tui.flows.values import (
 )
 from dhsim_tui.tui.keys import help_rows
 from dhsim_tui.tui.screens.control_commands import control_commands
+from dhsim_tui.tui.screens.control_jobs import (
+    BranchesFailed,
+    BranchesFound,
+    CloudFailed,
+    CloudSampled,
+    find_branches,
+    sample_workspace,
+)
 from dhsim_tui.tui.screens.control_keys import (
     CONTROL_BINDINGS,
     HELP_NOTES,
     KeyHints,
     bindings_in_effect,
 )
+from dhsim_tui.tui.screens.control_program import ProgramPlayer
 from dhsim_tui.tui.screens.dialogs import short_path
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.tui.widgets.pose_panel import ALL_READOUTS, READOUTS, PosePanel
+from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 from dhsim_tui.tui.widgets.stepping import StepSizeRequested
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel, is_wide
 
@@ -93,35 +100,6 @@ TALL_FOR_BOTH = 32
 #: from this height on the pose panel shows every read-out at once (OAT,
 #: roll-pitch-yaw and the 4×4 transform): a tall side panel has the room
 TALL_FOR_ALL_READOUTS = 44
-#: how many points the workspace cloud (W) has
-CLOUD_POINTS = 20000
-
-
-# -- what the background jobs post ------------------------------------------------
-@dataclass
-class BranchesFound(Message):
-    """b's search ended: the solutions for the pose the arm had at ``q``."""
-
-    q: tuple[float, ...]
-    key: bytes
-    found: object
-
-
-@dataclass
-class BranchesFailed(Message):
-    reason: str
-
-
-@dataclass
-class CloudSampled(Message):
-    """W's sampling ended: positions the tool can reach."""
-
-    points: np.ndarray
-
-
-@dataclass
-class CloudFailed(Message):
-    reason: str
 
 
 class ControlScreen(Screen):
@@ -177,6 +155,7 @@ class ControlScreen(Screen):
                     ):
                         yield JointRow(i, joint, robot.units, value)
                 yield CartesianPanel(id="cartesian")
+                yield ProgramPanel(id="program")
                 yield PosePanel(id="pose")
                 yield Static("", id="status")
                 yield KeyHints(id="keys")
@@ -189,6 +168,8 @@ class ControlScreen(Screen):
         self._joints = self.query_one(JointPanel)
         self._pose_panel = self.query_one(PosePanel)
         self._cartesian_panel = self.query_one(CartesianPanel)
+        self._program_panel = self.query_one(ProgramPanel)
+        self._programs = ProgramPlayer(self, self._program_panel)
         self._ready = True
         self._update_step_caption()
         self._apply_size(self.app.size.width, self.app.size.height)
@@ -324,16 +305,27 @@ class ControlScreen(Screen):
     def on_descendant_focus(self, event: DescendantFocus) -> None:
         """The panel with the focus jogs (c, or a click on it): the layout,
         the step caption, the pose shown and the keys follow."""
-        if event.widget not in (self._joints, self._cartesian_panel):
+        if event.widget not in (self._joints, self._cartesian_panel, self._program_panel):
             return
         self.set_class(self.cartesian, "-cartesian")
+        self.set_class(self.focused is self._program_panel, "-program")
         self._update_step_caption()
         self._show_now()
         self.refresh_bindings()  # c's label in the footer
         self.query_one(KeyHints).refresh_hints()
 
     def action_switch(self, to: str) -> None:
-        """c: Cartesian jogging, or back to the joints (``to``)."""
+        """c: Cartesian jogging, or back to the joints (``to``); g: the
+        program panel, or back to the joints."""
+        if to == "program":
+            if self.focused is self._program_panel:
+                self._joints.focus()
+                self.say("joint jogging")
+                return
+            self.add_class("-program")  # shown first: a hidden panel takes no focus
+            self._program_panel.focus()
+            self.say("program: R records a step, space plays, l joint/linear, delete, ctrl+z")
+            return
         if to == "cartesian":
             self.add_class("-cartesian")  # shown first: a hidden panel takes no focus
             self._cartesian_panel.focus()
@@ -350,6 +342,8 @@ class ControlScreen(Screen):
             return False
         if action == "toggle_motion":  # the label shows the state motion is in
             return bool(parameters and parameters[0]) == self.animate
+        if action == "switch" and parameters[0] == "program":
+            return True
         if action == "switch":  # c's label names the mode it switches to
             return (parameters[0] == "cartesian") != self.cartesian
         if action == "next_pose" and not self.robot.pose_names:
@@ -556,6 +550,8 @@ class ControlScreen(Screen):
     def _interrupt(self) -> None:
         """A key that moves the arm: stop a move where it is, and say so (the
         key's own action may say something else right after)."""
+        if self._ready and self._programs.pause():
+            self.say("paused")
         if self._stop_motion():
             self.say("stopped")
 
@@ -607,22 +603,8 @@ class ControlScreen(Screen):
         self.finding_branches = True
         self._branch_presses = 1
         self.say("finding the arm's solutions for this pose…")
-        self._find_branches(self.robot, self.q, pose, key)
-
-    @work(thread=True, exclusive=True, group="branches")
-    def _find_branches(self, robot: Robot, q: tuple[float, ...], pose, key: bytes) -> None:
-        # every-solution IK loads on the first b, not at start-up (tests/core/test_layers.py)
-        from dhsim_tui.core.motion.branch_search import find_solutions
-
-        worker = get_current_worker()
-        try:
-            found = find_solutions(robot, q, pose)
-        except SEARCH_ERRORS as exc:
-            message: Message = BranchesFailed(str(exc))
-        else:
-            message = BranchesFound(q, key, found)
-        if not worker.is_cancelled:  # (the screen went away meanwhile)
-            self.post_message(message)
+        job = partial(find_branches, self.post_message, self.robot, self.q, pose, key)
+        self.run_worker(job, thread=True, exclusive=True, group="branches")
 
     def on_branches_failed(self, message: BranchesFailed) -> None:
         self.finding_branches = False
@@ -669,23 +651,8 @@ class ControlScreen(Screen):
             self.on_cloud_sampled(CloudSampled(self._cloud_points))
             return
         self.say("sampling the workspace… (W again: never mind)")
-        self._sample_workspace(self.robot)
-
-    @work(thread=True, exclusive=True, group="workspace")
-    def _sample_workspace(self, robot: Robot) -> None:
-        worker = get_current_worker()
-        chunks = []
-        try:
-            with np.errstate(all="ignore"):  # chunk by chunk: W may stop it
-                for chunk in workspace.position_chunks(robot, CLOUD_POINTS, 0):
-                    if worker.is_cancelled:
-                        return
-                    chunks.append(chunk)
-            message: Message = CloudSampled(np.concatenate(chunks))
-        except SEARCH_ERRORS as exc:
-            message = CloudFailed(str(exc))
-        if not worker.is_cancelled:  # W again, or the screen went away
-            self.post_message(message)
+        job = partial(sample_workspace, self.post_message, self.robot)
+        self.run_worker(job, thread=True, exclusive=True, group="workspace")
 
     def on_cloud_failed(self, message: CloudFailed) -> None:
         if self.cloud_state == "computing":
@@ -701,6 +668,27 @@ class ControlScreen(Screen):
         self.cloud_state = "on"
         self._views.set_cloud(message.points)
         self.say(f"workspace: {len(message.points)} positions the tool can reach (W hides them)")
+
+    # -- programs: the program panel, R and space (control_program) ---------------
+    def stop_moving(self) -> None:
+        """A program starts playing: a smooth move stops where it is."""
+        self._stop_motion()
+
+    def action_record(self) -> None:
+        self._programs.record()
+        self.add_class("-program")
+
+    def action_play(self) -> None:
+        self._programs.toggle()
+
+    def on_program_panel_changed(self, message: ProgramPanel.Changed) -> None:
+        self._programs.change(message.change, message.index)
+
+    def on_program_panel_seek(self, message: ProgramPanel.Seek) -> None:
+        self._programs.seek(message.steps)
+
+    def on_program_panel_next_problem(self, message: ProgramPanel.NextProblem) -> None:
+        self._programs.next_problem()
 
     # -- the views panel ------------------------------------------------------------
     def on_views_panel_maximised(self, message: ViewsPanel.Maximised) -> None:

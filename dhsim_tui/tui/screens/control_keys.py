@@ -37,6 +37,11 @@ WORKSPACE = Keys(
 PICTURE = Keys(
     "save picture", help="save the screen as an SVG picture in the working folder (for a report)"
 )
+PROGRAM = Keys("program", help="the program panel: its steps (again: back to the joints)")
+RECORD = Keys(
+    "record step", help="record the current pose as the program's next step (a joint move)"
+)
+PLAY = Keys("play/pause", help="play the program in the views, in real time; again: pause")
 EDIT = Keys("edit table", help="edit the robot's D-H table")
 HELP = Keys("help", help="this help")
 QUIT = Keys("quit", help="quit")
@@ -74,6 +79,12 @@ CONTROL_BINDINGS = [
     Binding("i", "app.save_picture", "Picture", show=False, id="app.save_picture",
             tooltip="Save the screen as an SVG picture in the working folder (for a report)",
             group=PICTURE),
+    Binding("g", "switch('program')", "Program", show=False, id="program.show",
+            tooltip="The program panel: select, change and play its steps", group=PROGRAM),
+    Binding("R", "record", "Record", show=False, id="program.record",
+            tooltip="Record the current pose as the program's next step", group=RECORD),
+    Binding("space", "play", "Play", show=False, id="program.play",
+            tooltip="Play the program from the start, or pause and go on", group=PLAY),
     Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table",
             group=EDIT),
     Binding("question_mark", "help", "Help", key_display="?", id="app.help", tooltip="Every key",

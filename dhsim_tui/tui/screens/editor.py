@@ -3,8 +3,9 @@ import), save, export and convert.
 
 Every edit goes through :mod:`dhsim_tui.core.model.editing`, which returns a new
 valid robot or raises DhsimError; a rejected value is shown where it was
-typed and the robot stays as it was. Saves go through :mod:`save_flow`:
-atomic, and never over a file that changed on disk without asking.
+typed and the robot stays as it was (the edits: :mod:`editor_edits`). Saves
+go through :mod:`save_flow`: atomic, and never over a file that changed on
+disk without asking (the file commands: :mod:`editor_files`).
 
 A burst of keys is cheap: an edit changes the robot in memory at once, and
 the tables (only the cells that changed), title and preview are redrawn
@@ -19,6 +20,7 @@ from time import monotonic
 from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
+from textual.await_complete import AwaitComplete
 from textual.containers import Container, Vertical
 from textual.coordinate import Coordinate
 from textual.events import Resize
@@ -35,22 +37,30 @@ from dhsim_tui.scene import build_wireframe
 from dhsim_tui.terminal.charset import ascii_mode, shown
 from dhsim_tui.terminal.typeahead import FRAME, draw_later
 from dhsim_tui.tui.flows.export import export_flow
-from dhsim_tui.tui.flows.fields import ask_field, ask_joint_field, ask_new_pose_name
-from dhsim_tui.tui.flows.recover import offer_recovery
-from dhsim_tui.tui.flows.save import is_bundled, reapply_edits, save_flow
-from dhsim_tui.tui.screens.dialogs import Confirm, SaveGuard, short_path
-from dhsim_tui.tui.screens.editor_changes import describe_change
+from dhsim_tui.tui.flows.save import is_bundled
+from dhsim_tui.tui.screens.dialogs import SaveGuard
 from dhsim_tui.tui.screens.editor_commands import editor_commands
+from dhsim_tui.tui.screens.editor_edits import (
+    add_here,
+    convert_robot,
+    delete_here,
+    edit_joint_value,
+    edit_robot_field,
+    move_joint,
+    toggle_type,
+    undo_redo,
+)
+from dhsim_tui.tui.screens.editor_files import open_in_editor, save_edited
 from dhsim_tui.tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_NOTES, EDITOR_HELP_ROWS
 from dhsim_tui.tui.screens.editor_table import (
     JOINT_COLUMNS,
     FittedTable,
     field_rows,
+    file_words,
     joint_labels,
     joint_rows,
 )
 from dhsim_tui.tui.screens.help import HelpScreen
-from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel, is_wide
 
 __all__ = ["EditorScreen", "is_bundled"]
@@ -65,6 +75,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     """
 
     BINDINGS = EDITOR_BINDINGS
+
+    _left = False  # dismissed: a second leave does nothing
 
     def __init__(
         self,
@@ -101,7 +113,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         #: the joints table's row for the cursor at the next redraw (after add, move)
         self._cursor_row: int | None = None
         #: the fields table's row (its key) for the cursor at the next redraw (a new pose)
-        self._field_row: str | None = None
+        self.field_cursor: str | None = None
 
     # -- state ------------------------------------------------------------------
     @property
@@ -181,23 +193,16 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
             self._joints.move_cursor(row=min(self._cursor_row, robot.dof - 1))
             self._cursor_row = None
         mark = (" *" if ascii_mode(self.app) else " ●") if self.dirty else ""
-        if self.path is not None:
-            where = short_path(self.path, 40)
-        elif self.template is not None:
-            where = f"from bundled {printable(self.template.name)}"
-        elif self.imported_from is not None:
-            where = f"imported from {printable(self.imported_from.name)}, not saved"
-        else:
-            where = "not saved yet"
+        where = file_words(self.path, self.template, self.imported_from)
         name = printable(robot.name)
         title = f"{name}{mark} · {robot.type_string} · {where}"
         self._joints.border_title = escape(shown(title, self.app))
         self._fields.show(("field", "value"), field_rows(robot))
-        if self._field_row is not None:
+        if self.field_cursor is not None:
             keys = [key for key, _ in field_rows(robot)]
-            if self._field_row in keys:
-                self._fields.move_cursor(row=keys.index(self._field_row))
-            self._field_row = None
+            if self.field_cursor in keys:
+                self._fields.move_cursor(row=keys.index(self.field_cursor))
+            self.field_cursor = None
         self._fields.border_title = shown("Robot · poses (a adds, d deletes)", self.app)
         self.app.sub_title = f"{name}{mark}"
         frames = robot.kinematics.frames(robot.home)
@@ -207,7 +212,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     def _refresh_keys(self) -> None:
         """Re-check which keys apply, only when that can have changed (the
         footer rebuilds itself on every refresh_bindings)."""
-        state = (self.history.can_undo, self.history.can_redo, self._in_joints())
+        state = (self.history.can_undo, self.history.can_redo, self.in_joints())
         if state != getattr(self, "_key_state", None):
             self._key_state = state
             self.refresh_bindings()
@@ -230,31 +235,35 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         rows = len(Text(text).wrap(self.app.console, width)) if width else 0
         return min(max(rows, 2), 6)
 
-    def _apply(self, robot: Robot, message: str, cursor_row: int | None = None) -> None:
+    def push_edit(self, robot: Robot, message: str, cursor_row: int | None = None) -> None:
+        """``robot`` becomes the edited robot (undo reverts it) and ``message``
+        says what changed; nothing happens when it is the same robot."""
         if self.history.push(robot):
             self.refresh_robot(cursor_row)
             self.say(message)
 
-    def _attempt(self, edit, message: str, cursor_row: int | None = None) -> bool:
+    def attempt(self, edit, message: str, cursor_row: int | None = None) -> bool:
         """Run an edit; on DhsimError show why and change nothing."""
         try:
             robot = edit()
         except DhsimError as exc:
             self.say(str(exc), error=True)
             return False
-        self._apply(robot, message, cursor_row)
+        self.push_edit(robot, message, cursor_row)
         return True
 
     # -- where the cursor is -------------------------------------------------
-    def _in_joints(self) -> bool:
+    def in_joints(self) -> bool:
+        """The cursor is in the joints table (else in the robot's fields)."""
         return self.focused is self._joints
 
-    def _joint_index(self) -> int:
+    def joint_index(self) -> int:
         """The joint under the cursor (where it will be, if a redraw is due)."""
         row = self._joints.cursor_row if self._cursor_row is None else self._cursor_row
         return max(0, min(row, self.robot.dof - 1))
 
-    def _field_key(self) -> str:
+    def field_key(self) -> str:
+        """The key of the robot field under the cursor (``pose:<name>`` for a pose)."""
         fields = self._fields
         if fields.row_count == 0:
             return ""
@@ -263,7 +272,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if not self._ready:  # keys that arrive before the tables exist do nothing
             return False
-        if action in ("toggle_type", "move") and not self._in_joints():
+        if action in ("toggle_type", "move") and not self.in_joints():
             return None
         if action == "undo" and not self.history.can_undo:
             return None
@@ -297,91 +306,32 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
 
     @work(exclusive=True, group="modal")
     async def edit_joint_field(self, index: int, name: str) -> None:
-        answer = await ask_joint_field(self.app, self.robot, index, name)
-        if answer is not None:
-            self._apply(*answer)
+        await edit_joint_value(self, index, name)
 
     @work(exclusive=True, group="modal")
     async def edit_field(self, key: str) -> None:
-        try:
-            new = await ask_field(self.app, self.robot, key)
-        except DhsimError as exc:
-            self.say(str(exc), error=True)
-            return
-        if new is not None:
-            self._apply(new, describe_change(self.robot, new))
+        await edit_robot_field(self, key)
 
-    # -- table actions ----------------------------------------------------------
+    # -- table actions (editor_edits.py) ----------------------------------------
     def action_toggle_type(self) -> None:
-        index = self._joint_index()
-        self._attempt(
-            lambda: editing.toggle_type(self.robot, index),
-            f"joint {index + 1} is now {self._type_after(index)}",
-        )
-
-    def _type_after(self, index: int) -> str:
-        return "prismatic" if self.robot.joints[index].is_revolute else "revolute"
+        toggle_type(self)
 
     @work(exclusive=True, group="modal")
     async def action_add(self) -> None:
-        if self._in_joints():
-            index = self._joint_index()
-            self._attempt(
-                lambda: editing.insert_joint(self.robot, index),
-                f"joint {index + 2} added",
-                cursor_row=index + 1,
-            )
-            return
-        name = await ask_new_pose_name(self.app, self.robot)
-        if name is not None and self._attempt(
-            lambda: editing.set_pose(self.robot, name, self.robot.home),
-            f"pose {name} added (home values; enter on it edits them)",
-        ):
-            self._field_row = f"pose:{name}"  # the cursor goes to the new pose
+        await add_here(self)
 
     @work(exclusive=True, group="modal")
     async def action_delete(self) -> None:
-        if self._in_joints():
-            index = self._joint_index()
-            if self.robot.dof <= 1:
-                self.say("a robot needs at least 1 joint", error=True)
-                return
-            if await self.app.push_screen_wait(Confirm(f"Delete joint {index + 1}?")):
-                self._attempt(
-                    lambda: editing.delete_joint(self.robot, index), f"joint {index + 1} deleted"
-                )
-            return
-        key = self._field_key()
-        if not key.startswith("pose:"):
-            self.say("only joints and poses can be deleted", error=True)
-            return
-        name = key.removeprefix("pose:")
-        if await self.app.push_screen_wait(Confirm(f"Delete pose {name}?")):
-            self._attempt(lambda: editing.delete_pose(self.robot, name), f"pose {name} deleted")
+        await delete_here(self)
 
     def action_move(self, delta: int) -> None:
-        index = self._joint_index()
-        self._attempt(
-            lambda: editing.move_joint(self.robot, index, delta),
-            f"joint {index + 1} moved to {index + 1 + delta}",
-            cursor_row=index + delta,
-        )
+        move_joint(self, delta)
 
     def action_undo(self) -> None:
-        before = self.robot
-        if self.history.undo():
-            self.refresh_robot()
-            self.say(f"undid: {describe_change(before, self.robot)}")
-        else:
-            self.say("nothing to undo", error=True)
+        undo_redo(self, undo=True)
 
     def action_redo(self) -> None:
-        before = self.robot
-        if self.history.redo():
-            self.refresh_robot()
-            self.say(f"redid: {describe_change(before, self.robot)}")
-        else:
-            self.say("nothing to redo", error=True)
+        undo_redo(self, undo=False)
 
     def palette_commands(self) -> list:
         """The command palette's commands for the editor as it is now."""
@@ -395,32 +345,9 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
 
     # -- files -------------------------------------------------------------------
     async def save_robot(self, save_as: bool = False) -> bool:
-        """Save (asking a name when needed); True once nothing is unsaved."""
-        source = self.path or self.template
-        base = self.saved
-        result = await save_flow(
-            self.app,
-            self.robot,
-            source,
-            self.stamp,
-            base_text=self.new_text if source is None else None,
-            save_as=save_as,
-            report=self.say,
-        )
-        if result is None:
-            return False
-        self.path, self.template = result.path, None
-        self.saved, self.stamp = result.robot, result.stamp
-        self.new_text = self.imported_from = None
-        if result.kind == "reloaded":  # the file's content, my edits re-applied on top
-            mine = self.robot
-            again = await reapply_edits(self.app, base, mine, result.robot)
-            if again.combined:  # undo takes out my edits, back to the file's
-                self.history = editing.History(result.robot)
-                self.history.push(again.robot)
-            self.say(f"reloaded {short_path(result.path, 40)}: {again.message}", not again.combined)
-        self.refresh_robot()
-        return not self.dirty
+        """Save (asking a name when needed); True once nothing is unsaved
+        (:mod:`editor_files`: a reload puts my edits back on the file's robot)."""
+        return await save_edited(self, save_as)
 
     @work(exclusive=True, group="modal")
     async def action_save(self) -> None:
@@ -442,36 +369,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
     @work(exclusive=True, group="modal")
     async def action_open(self, importing: bool = False) -> None:
         """Open a robot file, or import a .urdf/.csv (``importing``: only those)."""
-        if not await self.guard("opening another robot"):
-            return
-        opened = await self.app.push_screen_wait(OpenRobot(importing=importing))
-        if opened is None:
-            return
-        if opened.imported:
-            self.show_import(opened)
-            return
-        robot, path, stamp = opened.robot, opened.source, opened.stamp
-        found = await offer_recovery(self.app, path, robot)  # changes kept by a crash
-        self.history = editing.History(found.robot if found else robot)
-        bundled = is_bundled(path)
-        self.path = None if bundled else path
-        self.template = path if bundled else None
-        self.saved, self.stamp = robot, stamp
-        self.new_text = self.imported_from = None
-        self.refresh_robot()
-        self.say(f"opened {short_path(path, 50)}")
-
-    def show_import(self, opened: Opened) -> None:
-        """Edit an imported robot: it has no robot file yet, so it is unsaved
-        and ctrl+s asks for a name in robots/. The importer's notes are shown."""
-        self.history = editing.History(opened.robot)
-        self.path = self.template = None
-        self.saved, self.stamp = None, None
-        self.new_text = header_text(opened.header)
-        self.imported_from = opened.source
-        self.refresh_robot()
-        self.say(f"imported {short_path(opened.source, 40)}; not saved yet: ctrl+s saves it")
-        self.app.push_screen(ImportNotes(opened, f"ctrl+s saves it as {ROBOTS_DIR}/<name>.toml"))
+        await open_in_editor(self, importing)
 
     @work(exclusive=True, group="modal")
     async def action_export(self) -> None:
@@ -482,17 +380,19 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         return "modified" if self.robot.convention == "standard" else "standard"
 
     def action_convert(self) -> None:
-        """The same arm in the other D-H convention (the core's exact
-        conversion: the tool's pose is unchanged at every joint value): one
-        edit, which undo reverts."""
-        from dhsim_tui.core.interop.convert import convert  # loaded when first used
+        """The same arm in the other D-H convention: one edit, which undo reverts."""
+        convert_robot(self, self.other_convention())
 
-        convention = self.other_convention()
-        before = self.robot.convention
-        self._attempt(
-            lambda: convert(self.robot, convention),
-            f"converted from {before} to {convention} D-H: the same arm (ctrl+z undoes)",
-        )
+    def dismiss(self, result=None):
+        """Leave once, and only from the front: Textual's dismiss pops whatever
+        screen is in front, so a second leave, or one that lands while a
+        dialog or the help is over the editor (keys typed ahead of a slow
+        machine), took away the simulator under it and left a blank screen
+        (the long monkey's hangs)."""
+        if self._left or self.app.screen is not self:
+            return AwaitComplete()
+        self._left = True
+        return super().dismiss(result)
 
     @work(exclusive=True, group="modal")
     async def action_leave(self) -> None:

@@ -10,6 +10,7 @@ scrolls sideways instead of cutting a value.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 
 from rich.cells import cell_len
 from rich.text import Text
@@ -20,6 +21,7 @@ from textual.widgets import DataTable
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.validation import fmt
+from dhsim_tui.tui.screens.dialogs import short_path
 
 Cell = str | Text
 
@@ -185,3 +187,16 @@ class FittedTable(DataTable):
         if rows:
             row = min(cursor.row, len(rows) - 1)
             self.cursor_coordinate = Coordinate(row, min(cursor.column, len(labels) - 1))
+
+
+def file_words(path: Path | None, template: Path | None, imported_from: Path | None) -> str:
+    """The title's words for where the robot is kept: its file (``path``),
+    the bundled robot it started from (``template``), the file it was
+    imported from, or none yet."""
+    if path is not None:
+        return short_path(path, 40)
+    if template is not None:
+        return f"from bundled {printable(template.name)}"
+    if imported_from is not None:
+        return f"imported from {printable(imported_from.name)}, not saved"
+    return "not saved yet"

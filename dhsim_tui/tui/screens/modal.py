@@ -24,7 +24,7 @@ class Dialog(ModalScreen[Result], Generic[Result]):
     _answered = False
 
     def dismiss(self, result: Result | None = None) -> AwaitComplete:
-        if self._answered or not self.is_current:
+        if self._answered or self.app.screen is not self:
             return AwaitComplete()
         self._answered = True
         return super().dismiss(result)

@@ -40,7 +40,7 @@ if TYPE_CHECKING:
 
 #: the command that writes the screen to a file (found by "picture", "screen", "plot")
 SAVE_PICTURE = "Save picture: a screenshot or plot of the screen (SVG)"
-#: what the themes are, by --theme's names (app.THEMES)
+#: what the themes are, by --theme's names (colour.THEME_NAMES)
 THEME_HELP = {
     "dark": "light text on a dark background (the default)",
     "light": "dark text on a light background",
@@ -137,6 +137,13 @@ class DhsimPalette(CommandPalette):
         self._stop_no_matches_countdown()
         return super().dismiss(result)
 
+    def _gather_commands(self, search_value: str):
+        """A key typed while the palette leaves starts no search: its list may
+        be gone already (the long monkey's NoMatches in Textual's worker)."""
+        if self._leaving or not self.query(CommandList):
+            return None
+        return super()._gather_commands(search_value)
+
     def _action_command_list(self, action: str) -> None:
         """A list key (up, down, page...) that comes while the palette leaves:
         its list may be gone already (the monkey's NoMatches)."""
@@ -150,3 +157,15 @@ class DhsimPalette(CommandPalette):
     async def _watch__show_busy(self) -> None:
         if not self._leaving and self.is_mounted:
             await super()._watch__show_busy()
+
+
+def palette_may_open(app: DhsimApp, last: DhsimPalette | None) -> bool:
+    """ctrl+p opens a palette on ``app``: not over a dialog, and not while a
+    palette is opening, open or still leaving the screen (``last``: the one
+    opened before; ctrl+p, escape, ctrl+p in one read)."""
+    return (
+        app.use_command_palette
+        and not CommandPalette.is_open(app)
+        and (last is None or last.gone)
+        and hasattr(app.screen, "palette_commands")  # a screen with commands
+    )

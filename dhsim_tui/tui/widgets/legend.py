@@ -19,6 +19,9 @@ CLOUD_GLYPHS = (".", "·", "⢕")
 FRAMES_SHORT = {"all": "all", "ends": "base+tool", "none": "none"}
 #: the space between two items
 GAP = "  "
+#: the items the legend must show to be shown at all: links, joints, tool
+#: (one more when the arm has both kinds of joint)
+ESSENTIAL = 3
 
 
 def legend_items(
@@ -88,3 +91,29 @@ def pack(items: list[Text], width: int) -> Text:
 def frames_caption(frames: str) -> str:
     """What the help and palette call a frame mode."""
     return FRAME_MODE_NAMES[frames]
+
+
+def legend_line(
+    look,
+    styles: dict[str, Style],
+    joint_types: tuple[str, ...],
+    pedestal: bool,
+    frames: str,
+    cloud: bool,
+    width: int,
+) -> tuple[Text, bool]:
+    """The legend packed into ``width`` columns, and whether it is too
+    cramped to show (it would not name the links, the joints and the tool):
+    one line or nothing, never wrapped or cut."""
+    items = legend_items(
+        ascii=look.ascii,
+        mono=look.mono,
+        styles=styles,
+        joint_types=joint_types or ("revolute",),
+        pedestal=pedestal,
+        frames=frames,
+        cloud=cloud,
+    )
+    kinds = len(set(joint_types)) if joint_types else 1
+    essential = pack(items[: ESSENTIAL + kinds - 1], 10**6).cell_len
+    return pack(items, width), essential > width

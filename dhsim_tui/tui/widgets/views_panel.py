@@ -32,14 +32,13 @@ from textual.widgets import Static
 from dhsim_tui.render.picture import CELL_ROLES, Framing
 from dhsim_tui.scene import VIEWS, Wireframe, project
 from dhsim_tui.scene.cloud import ViewCloud, project_cloud, projection_key
-from dhsim_tui.scene.figure import least_size
-from dhsim_tui.scene.framing import fit_bounds, fitted, work_area_framings
-from dhsim_tui.scene.oblique import Orbit, project_oblique, view_point
-from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene, holds
+from dhsim_tui.scene.kept_framing import KeptFramings
+from dhsim_tui.scene.oblique import Orbit, project_oblique
+from dhsim_tui.scene.projection import ORTHO_VIEWS, View, ViewScene
 from dhsim_tui.scene.wireframe import FRAME_MODES
 from dhsim_tui.terminal.charset import ascii_mode
 from dhsim_tui.tui.widgets.arm_view import ArmView
-from dhsim_tui.tui.widgets.legend import FRAMES_SHORT, legend_items, pack
+from dhsim_tui.tui.widgets.legend import FRAMES_SHORT, legend_line
 from dhsim_tui.tui.widgets.view_keys import BINDINGS
 from dhsim_tui.tui.widgets.view_style import look_of, role_styles
 
@@ -50,9 +49,6 @@ ZOOM_STEP = 1.5
 ZOOM_RANGE = (1 / 4, 64.0)
 #: room the axes take in a plotext view: y labels and axis, x axis and labels
 AXES_ROOM = (7, 2)
-#: the legend's items it must show to be shown at all: links, joints, tool
-#: (one more when the arm has both kinds of joint)
-ESSENTIAL = 3
 #: degrees the 3-D view turns per cell dragged (a row is two columns tall)
 DRAG_DEGREES = (3.0, 6.0)
 
@@ -96,10 +92,7 @@ class ViewsPanel(Container):
         self.zoom = 1.0
         self.orbit = Orbit()
         self._zoom_centre: np.ndarray | None = None  # world point zoomed about
-        self._fits: list[Framing | None] = [None] * len(VIEWS)  # F: each view's, at zoom 1
-        self._fit_canvas: tuple[tuple[int, int], ...] | None = None
-        self._iso: Framing | None = None  # the 3-D view's framing at zoom 1
-        self._iso_key: tuple | None = None
+        self._kept = KeptFramings(len(VIEWS))  # framings that hold still while the arm moves
         self._wire: Wireframe | None = None
         self._legend_key: tuple | None = None
         self._cloud: np.ndarray | None = None  # world points (n, 3), or none shown
@@ -122,37 +115,35 @@ class ViewsPanel(Container):
     def _show_legend(self) -> None:
         """The legend for the robot, frames and cloud shown, packed into the
         panel's width; hidden when not even the links fit."""
-        app, look = self.app, look_of(self.app)
         wire = self._wire
+        joint_types = wire.joint_types if wire is not None else ()
+        pedestal = wire is not None and wire.pedestal is not None
         width = max(self.size.width - 2, 0)
+        look = look_of(self.app)
         key = (
             look,
-            app.theme,
+            self.app.theme,
             width,
             self.frames,
             self._cloud is not None,
-            wire.joint_types if wire is not None else (),
-            wire is not None and wire.pedestal is not None,
+            joint_types,
+            pedestal,
         )
         if key == self._legend_key:
             return
         self._legend_key = key
+        app = self.app
         styles = role_styles(app.console.color_system, ansi_theme=app.current_theme.ansi)
-        items = legend_items(
-            ascii=look.ascii,
-            mono=look.mono,
-            styles=dict(zip(CELL_ROLES, styles, strict=True)),
-            joint_types=(wire.joint_types if wire is not None else ()) or ("revolute",),
-            pedestal=wire is not None and wire.pedestal is not None,
-            frames=self.frames,
-            cloud=self._cloud is not None,
+        text, cramped = legend_line(
+            look,
+            dict(zip(CELL_ROLES, styles, strict=True)),
+            joint_types,
+            pedestal,
+            self.frames,
+            self._cloud is not None,
+            width,
         )
-        text = pack(items, width)
-        # the legend is one line or nothing, never wrapped or cut; and only
-        # when it names at least the links, the joints and the tool
-        kinds = len(set(key[5])) if key[5] else 1
-        essential = pack(items[: ESSENTIAL + kinds - 1], 10**6).cell_len
-        self.set_class(essential > width, "-cramped")
+        self.set_class(cramped, "-cramped")
         self.query_one(".legend", Static).update(text)
 
     def _restyle(self) -> None:
@@ -236,50 +227,16 @@ class ViewsPanel(Container):
         return max(width, 2), max(height, 2)
 
     def _framings(self, scenes: list[ViewScene]) -> list[Framing]:
-        if self.fit:
-            return self._fitted(scenes)
         canvases = [self._canvas(scene.view) for scene in scenes]
-        framings = work_area_framings(scenes, canvases)
-        framings[-1] = self._iso_framing(scenes[-1], framings[-1])
-        if self._zoom_centre is None or self._wire is None:
-            return [framing.zoomed(self.zoom) for framing in framings]
-        return [
-            framing.zoomed(
-                self.zoom, view_point(self._wire, scene.view, self.orbit, self._zoom_centre)
-            )
-            for framing, scene in zip(framings, scenes, strict=True)
-        ]
-
-    def _iso_framing(self, scene: ViewScene, fresh: Framing) -> Framing:
-        """The 3-D view's framing (at zoom 1): the floor and the arm, kept
-        while the arm stays in it, the size and the elevation hold (turning
-        the view never moves it), ``fresh`` when one of them changes."""
-        cols, rows = self._canvas(scene.view)
-        key = (cols, rows, self.orbit.elevation)
-        kept = self._iso
-        if (
-            kept is None
-            or key != self._iso_key
-            or not holds(fit_bounds(scene), kept.centre, kept.per_dot, cols, rows)
-        ):
-            kept, self._iso, self._iso_key = fresh, fresh, key
-        return kept
-
-    def _fitted(self, scenes: list[ViewScene]) -> list[Framing]:
-        """F: each view on the arm, its framing kept while the arm stays in
-        it (at zoom 1) and made again when the arm leaves it or the size changes."""
-        canvases = tuple(self._canvas(scene.view) for scene in scenes)
-        if canvases != self._fit_canvas:
-            self._fits = [None] * len(VIEWS)
-            self._fit_canvas = canvases
-        least = least_size(self._wire) if self._wire is not None else 1.0
-        framings = []
-        for index, (scene, (cols, rows)) in enumerate(zip(scenes, canvases, strict=True)):
-            base = self._fits[index]
-            if base is None or not holds(fit_bounds(scene), base.centre, base.per_dot, cols, rows):
-                base = self._fits[index] = fitted(scene, cols, rows, least)
-            framings.append(base.zoomed(self.zoom))
-        return framings
+        return self._kept.framings(
+            scenes,
+            canvases,
+            fit=self.fit,
+            zoom=self.zoom,
+            wire=self._wire,
+            orbit=self.orbit,
+            zoom_centre=self._zoom_centre,
+        )
 
     def _redraw(self) -> None:
         if self._wire is not None:
@@ -386,7 +343,7 @@ class ViewsPanel(Container):
         return self.fit
 
     def watch_fit(self) -> None:
-        self._fits = [None] * len(VIEWS)
+        self._kept.forget()
         self.zoom = 1.0
         self._zoom_centre = None
         self._redraw()
@@ -397,15 +354,14 @@ class ViewsPanel(Container):
         return self.frames
 
     def watch_frames(self) -> None:
-        self._fits = [None] * len(VIEWS)  # what F frames includes the axes drawn
-        self._iso = None
+        self._kept.forget()  # what F frames includes the axes drawn
         self._redraw()
         if self.is_mounted:
             self._show_legend()
 
     def orbit_by(self, d_azimuth: float, d_elevation: float) -> None:
         self.orbit = self.orbit.turned(d_azimuth, d_elevation)
-        self._fits[VIEWS.index(VIEWS[3])] = None  # F keeps the 3-D view filled as it turns
+        self._kept.forget_fit(len(VIEWS) - 1)  # F keeps the 3-D view filled as it turns
         self._redraw()
 
     def on_arm_view_pressed(self, message: ArmView.Pressed) -> None:

@@ -1,0 +1,239 @@
+"""The simulator's programs: record a step (``R``), change the steps (the
+program panel's keys), play them in the views (``space``), seek a step or
+the next problem.
+
+:class:`ProgramPlayer` is the control screen's, made with it and told what
+it may use (:class:`Host`): the robot and the joints, the status line and
+the app's ``keep_robot``. The numbers are the core's: the program's edits
+(:mod:`dhsim_tui.core.model.program`), its samples and path check
+(:mod:`dhsim_tui.core.motion.trajectory`, :mod:`~dhsim_tui.core.motion.path_check`)
+and where the arm is at a time (:mod:`~dhsim_tui.core.motion.playback`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from time import monotonic
+from typing import Protocol
+
+from textual.timer import Timer
+
+from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.program import (
+    Program,
+    Step,
+    moved_step,
+    toggled_step,
+    with_program,
+    with_step,
+    without_step,
+)
+from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.motion.path_check import check_path
+from dhsim_tui.core.motion.playback import Playback
+from dhsim_tui.core.motion.trajectory import sample
+from dhsim_tui.tui.flows.values import shorten_path_in
+from dhsim_tui.tui.widgets.program_panel import ProgramPanel
+
+#: how many samples a second a program is played from
+PLAY_RATE = 100.0
+#: how often the views follow a program playing (s)
+PLAY_FRAME = 1 / 30
+NO_PROGRAM = "no program to play: R records the current pose as a step"
+
+
+class Host(Protocol):
+    """What the player uses of its screen."""
+
+    robot: Robot
+    q: tuple[float, ...]
+    app: object
+
+    def say(self, message: str, error: bool = False) -> None: ...
+    def set_interval(self, interval: float, callback) -> Timer: ...
+    def refresh_bindings(self) -> None: ...
+    def stop_moving(self) -> None: ...
+
+
+class ProgramPlayer:
+    """A robot's program as the simulator records, changes and plays it."""
+
+    def __init__(self, host: Host, panel: ProgramPanel) -> None:
+        self.host = host
+        self.panel = panel
+        robot = host.robot
+        self.name = robot.programs[0].name if robot.programs else "program1"
+        self._undo: list[tuple[Program, ...]] = []  # the programs before each change
+        self.playback: Playback | None = None
+        self._timer: Timer | None = None
+        self._from = (0.0, 0.0)  # (monotonic time, time played) when play last began
+        panel.show(self.program())
+
+    @property
+    def playing(self) -> bool:
+        return self._timer is not None
+
+    def program(self) -> Program | None:
+        robot = self.host.robot
+        return robot.program(self.name) if self.name in robot.program_names else None
+
+    # -- changes ---------------------------------------------------------------------
+    def record(self) -> None:
+        """The current pose as a joint move after the selected step."""
+        program = self.program() or Program(self.name)
+        at = self.panel.selected if program.steps else None
+        step = Step("joint", tuple(round(v, 6) for v in self.host.q))
+        done = f"recorded step {len(program.steps) + 1} of {program.name}"
+        if self._set(with_step(program, step, at), done) and program.steps:
+            self.panel.selected = (at or 0) + 1
+
+    def change(self, change: str, index: int) -> None:
+        """The program panel's ``kind``, ``delete``, ``up``, ``down`` or ``undo``."""
+        if change == "undo":
+            if not self._undo:
+                self.host.say("nothing to undo in the program", error=True)
+                return
+            programs = self._undo.pop()
+            self._keep(replace(self.host.robot, programs=programs), "undid the last change")
+            return
+        program = self.program()
+        if program is None or not program.steps:
+            self.host.say("the program has no steps: R records one", error=True)
+            return
+        if change == "kind":
+            changed = toggled_step(program, index)
+            self._set(changed, f"step {index + 1}: a {changed.steps[index].move} move")
+        elif change == "delete":
+            self._set(without_step(program, index), f"step {index + 1} deleted")
+        else:
+            delta = -1 if change == "up" else 1
+            if self._set(moved_step(program, index, delta), f"step {index + 1} moved"):
+                self.panel.selected = min(max(index + delta, 0), len(program.steps) - 1)
+
+    def _set(self, program: Program, message: str) -> bool:
+        """The robot with ``program`` (the core checks it), kept as poses are."""
+        robot = self.host.robot
+        try:
+            changed = replace(robot, programs=with_program(robot.programs, program))
+        except DhsimError as exc:
+            self.host.say(str(exc), error=True)
+            return False
+        self._undo.append(robot.programs)
+        self._keep(changed, message)
+        return True
+
+    def _keep(self, robot: Robot, message: str) -> None:
+        """Its file saved (or kept until quit for a bundled robot), as P does."""
+        self.pause()
+        self.playback = None
+        self.host.robot = robot
+        app = self.host.app
+        try:
+            saved_to = app.keep_robot(robot)  # type: ignore[attr-defined]
+        except DhsimError as exc:
+            reason = shorten_path_in(str(exc), app.robot_path)  # type: ignore[attr-defined]
+            self.host.say(f"{message}; not saved: {reason} (kept in memory)", error=True)
+        else:
+            where = "" if saved_to else " (kept until you quit: e, ctrl+s saves)"
+            self.host.say(message + where)
+        self.panel.show(self.program())
+        self.host.refresh_bindings()
+
+    # -- playing -----------------------------------------------------------------------
+    def toggle(self) -> None:
+        """space: play from the start (or on from a pause); again: pause."""
+        if self.playing:
+            self.pause()
+            self.host.say(f"paused at {self.playback.time:.2f} s (space goes on)")
+            return
+        if self.playback is not None and self.playback.done:
+            self.playback = None
+        if not self._ready():
+            return
+        self.host.stop_moving()
+        problems = self.playback.problems
+        found = (
+            f"; {len(problems)} problems (n: the next)"
+            if problems
+            else "; the path check found no problem"
+        )
+        self.host.say(
+            f"playing {self.name}: {self.playback.duration:.2f} s{found}", error=bool(problems)
+        )
+        self._start()
+
+    def pause(self) -> bool:
+        """Stop where it is; True if it was playing."""
+        if self._timer is None:
+            return False
+        self._timer.stop()
+        self._timer = None
+        return True
+
+    def _ready(self) -> bool:
+        """A playback (the program sampled from where the arm is, and checked)."""
+        if self.playback is not None:
+            return True
+        program = self.program()
+        if program is None or not program.steps:
+            self.host.say(NO_PROGRAM, error=True)
+            return False
+        try:
+            trajectory = sample(self.host.robot, program, PLAY_RATE, start=self.host.q)
+        except DhsimError as exc:
+            self.host.say(str(exc), error=True)
+            return False
+        self.playback = Playback(trajectory, check_path(trajectory))
+        return True
+
+    def _start(self) -> None:
+        self._from = (monotonic(), self.playback.time)
+        self._timer = self.host.set_interval(PLAY_FRAME, self._tick)
+        self._show()
+
+    def _tick(self) -> None:
+        playback = self.playback
+        if playback is None:
+            return
+        began, at = self._from
+        playback.time = min(at + monotonic() - began, playback.duration)
+        self.host.q = playback.at(playback.time)
+        self._show()
+        if playback.done:
+            self.pause()
+            self.host.say(f"played {self.name}: {playback.duration:.2f} s")
+
+    def _show(self) -> None:
+        playback = self.playback
+        if playback is None:
+            self.panel.show(self.program())
+            return
+        step = playback.step_at(playback.time)
+        self.panel.show(self.program(), step, playback.problems_per_step())
+        self.panel.border_subtitle = f"{playback.time:.2f} / {playback.duration:.2f} s"
+
+    def seek(self, steps: int) -> None:
+        """To the start of the step ``steps`` before or after."""
+        if self._ready():
+            self.playback.seek_step(steps)
+            self._jump()
+
+    def next_problem(self) -> None:
+        if not self._ready():
+            return
+        problem = self.playback.next_problem()
+        if problem is None:
+            self.host.say("the path check found no problem")
+            return
+        self._jump()
+        self.host.say(
+            f"step {problem.step} at {problem.time:.2f} s: {problem.subject} {problem.detail}",
+            error=True,
+        )
+
+    def _jump(self) -> None:
+        playing = self.pause()
+        self.host.q = self.playback.at(self.playback.time)
+        self._show()
+        if playing:
+            self._start()

@@ -1,0 +1,164 @@
+"""The program panel: a program's steps, the one selected, and playback.
+
+It takes focus (``g`` on the simulator, or a click): while it has it, the
+arrows select a step, ``l`` makes the step a joint or a linear move,
+``delete`` removes it, ``ctrl+↑ ↓`` move it, ``ctrl+z`` undoes, ``,`` and
+``.`` go a step back or on, ``n`` to the next problem. Each is a message to
+the screen, which holds the program (in the robot) and plays it; the panel
+shows what it is handed: the steps, the time, the problems.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rich.text import Text
+from textual import events
+from textual.binding import Binding
+from textual.message import Message
+from textual.reactive import reactive
+
+from dhsim_tui.core.model.program import Program
+from dhsim_tui.tui.keys import Keys
+from dhsim_tui.tui.widgets.joint_row import ascii_mode
+from dhsim_tui.tui.widgets.pose_panel import TextPanel, refresh_changed_lines
+
+SELECT = Keys("step", help="select a step of the program")
+KIND = Keys("joint/linear", help="the selected step: a joint move ⇄ a linear move")
+DELETE = Keys("delete step", help="delete the selected step")
+MOVE = Keys("move step", help="move the selected step up / down")
+UNDO = Keys("undo", help="undo the last change to the program")
+SEEK = Keys("step back/on", help="playback: to the start of the step before / after")
+PROBLEM = Keys("next problem", help="playback: to the next problem the path check found")
+
+BINDINGS = [
+    Binding("up", "select(-1)", "Step", key_display="↑↓", id="program.prev",
+            tooltip="Select the previous step", group=SELECT),
+    Binding("down", "select(1)", "Step", show=False, id="program.next",
+            tooltip="Select the next step", group=SELECT),
+    Binding("l", "change('kind')", "Joint/linear", show=False, id="program.kind",
+            tooltip="Make the selected step a linear move, or a joint move", group=KIND),
+    Binding("delete,backspace", "change('delete')", "Delete", show=False, id="program.delete",
+            tooltip="Delete the selected step", group=DELETE),
+    Binding("ctrl+up", "change('up')", "Move up", show=False, id="program.move_up",
+            tooltip="Move the selected step up", group=MOVE),
+    Binding("ctrl+down", "change('down')", "Move down", show=False, id="program.move_down",
+            tooltip="Move the selected step down", group=MOVE),
+    Binding("ctrl+z", "change('undo')", "Undo", show=False, id="program.undo",
+            tooltip="Undo the last change to the program", group=UNDO),
+    Binding("comma", "seek(-1)", "Back", show=False, id="program.back",
+            tooltip="To the start of the step before", group=SEEK),
+    Binding("full_stop", "seek(1)", "On", show=False, id="program.on",
+            tooltip="To the start of the next step", group=SEEK),
+    Binding("n", "next_problem", "Next problem", show=False, id="program.problem",
+            tooltip="To the next problem the path check found", group=PROBLEM),
+]  # fmt: skip
+
+
+#: a step's line is cut to this many columns (the side panel's width)
+LINE_WIDTH = 34
+
+
+def program_text(
+    program: Program | None,
+    selected: int,
+    playing_step: int | None,
+    marks: dict[int, int],
+    ascii: bool = False,
+) -> Text:
+    """One line per step, the selected one marked ``▶``, the one playing
+    ``•``; ``marks``: problems per step (1-based)."""
+    text = Text()
+    if program is None or not program.steps:
+        text.append("no steps yet: R records the current pose", style="dim")
+        return text
+    pointer, playing = (">", "*") if ascii else ("▶", "•")
+    for index, step in enumerate(program.steps):
+        number = index + 1
+        marker = pointer if index == selected else " "
+        now = playing if playing_step == number else " "
+        line = f"{marker}{now}{number:>3} {step.describe()}"
+        if len(line) > LINE_WIDTH:
+            line = line[: LINE_WIDTH - 1] + ("~" if ascii else "…")
+        problems = marks.get(number, 0)
+        style = "bold reverse" if index == selected else ""
+        if index:
+            text.append("\n")
+        text.append(line, style=style)
+        if problems:
+            text.append(f"  !{problems}", style="bold red")
+    return text
+
+
+class ProgramPanel(TextPanel, can_focus=True):
+    """Shows the program it is handed; its keys ask the screen."""
+
+    DEFAULT_CSS = "ProgramPanel { height: auto; max-height: 12; }"
+    ALLOW_SELECT = False
+    BINDINGS = BINDINGS
+
+    selected: reactive[int] = reactive(0, init=False)
+
+    @dataclass
+    class Changed(Message):
+        """A change asked of the selected step: ``kind``, ``delete``, ``up``,
+        ``down`` or ``undo``."""
+
+        change: str
+        index: int
+
+    @dataclass
+    class Seek(Message):
+        """Playback to the start of the step ``steps`` before (< 0) or after."""
+
+        steps: int
+
+    class NextProblem(Message):
+        """Playback to the next problem."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self._shown: tuple = (None, None, {})
+
+    def show(self, program: Program | None, playing_step: int | None = None, marks=None) -> None:
+        """The program's steps, the one playing (1-based) and the problems per step."""
+        count = len(program.steps) if program is not None else 0
+        if count and self.selected >= count:
+            self.set_reactive(ProgramPanel.selected, count - 1)
+        self._shown = (program, playing_step, dict(marks or {}))
+        self.border_title = f"Program {program.name}" if program is not None else "Program"
+        self._render_now()
+
+    def _render_now(self) -> None:
+        program, playing_step, marks = self._shown
+        text = program_text(program, self.selected, playing_step, marks, ascii_mode(self))
+        refresh_changed_lines(self, self._text, text)
+        self._text = text
+
+    def watch_selected(self) -> None:
+        self._render_now()
+
+    def action_select(self, delta: int) -> None:
+        program = self._shown[0]
+        if program is not None and program.steps:
+            self.selected = (self.selected + delta) % len(program.steps)
+
+    def action_change(self, change: str) -> None:
+        self.post_message(self.Changed(change, self.selected))
+
+    def action_seek(self, steps: int) -> None:
+        self.post_message(self.Seek(steps))
+
+    def action_next_problem(self) -> None:
+        self.post_message(self.NextProblem())
+
+    def on_click(self, event: events.Click) -> None:
+        """A click on a step selects it."""
+        program = self._shown[0]
+        self.focus()
+        if program is not None and 0 <= event.y < len(program.steps):
+            self.selected = event.y
+
+    def _on_hide(self, event: events.Hide) -> None:
+        """Hidden (a maximised view), it keeps the focus, as the jogging panels do."""
+        event.prevent_default()

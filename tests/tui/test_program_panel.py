@@ -1,0 +1,93 @@
+"""Programs in the simulator: g shows the program panel, R records the pose
+as a step, space plays the program in the views, the path check's problems
+are said and n jumps to them (issue 19)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from pilot_helpers import until
+
+from dhsim_tui.core import load_robot
+from dhsim_tui.core.model.program import Program, Step
+from dhsim_tui.core.motion.path_check import LIMIT, check_path
+from dhsim_tui.core.motion.trajectory import sample
+from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.widgets.program_panel import ProgramPanel
+
+pytestmark = pytest.mark.usefixtures("in_tmp")
+
+
+def status(app) -> str:
+    return str(app.screen.query_one("#status").render())
+
+
+async def started(pilot) -> ControlScreen:
+    await until(pilot, lambda: isinstance(pilot.app.screen, ControlScreen), "the simulator")
+    await pilot.pause()
+    return pilot.app.screen
+
+
+async def test_record_two_poses_and_play_them():
+    robot = replace(load_robot("puma560")[0], programs=())
+    app = DhsimApp(robot, animate=False)
+    async with app.run_test(size=(100, 30)) as pilot:
+        screen = await started(pilot)
+        await pilot.press("R")  # the home pose as step 1
+        await pilot.press("right", "right", "right", "right_square_bracket", "right")
+        await pilot.pause()
+        moved = screen.q
+        assert moved != robot.home
+        await pilot.press("R")
+        await pilot.pause()
+        program = app.robot.program("program1")
+        assert [s.move for s in program.steps] == ["joint", "joint"]
+        assert np.allclose(program.steps[1].to, moved)
+        assert screen.has_class("-program") and screen.query_one(ProgramPanel).display
+        await pilot.press("g")  # the panel takes the keys
+        await pilot.pause()
+        assert screen.focused is screen.query_one(ProgramPanel)
+        await pilot.press("up", "l")  # step 1 a linear move
+        await pilot.pause()
+        assert [s.move for s in app.robot.program("program1").steps] == ["linear", "joint"]
+        await pilot.press("ctrl+z")
+        await pilot.pause()
+        assert [s.move for s in app.robot.program("program1").steps] == ["joint", "joint"]
+        await pilot.press("space")
+        await until(pilot, lambda: "playing program1" in status(app), "playback")
+        duration = screen._programs.playback.duration
+        assert duration > 0
+        await until(pilot, lambda: "played program1" in status(app), "the end of playback")
+        assert np.allclose(screen.q, moved, atol=1e-6)  # the last step's pose
+        assert "kept until you quit" in status(app) or app.has_unsaved_poses
+
+
+async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it():
+    robot = load_robot("puma560")[0]
+    to_limit = Program("edge", (Step("joint", (160.0, 0, 0, 0, 0, 0)), Step("wait", seconds=0.2)))
+    robot = replace(robot, programs=(to_limit,))
+    trajectory = sample(robot, to_limit, 100.0)
+    problems = check_path(trajectory)
+    assert problems and problems[0].kind == LIMIT  # computed here, independently of the screen
+    app = DhsimApp(robot, animate=False)
+    async with app.run_test(size=(100, 30)) as pilot:
+        screen = await started(pilot)
+        await pilot.press("g", "space")
+        await until(pilot, lambda: "playing edge" in status(app), "playback")
+        assert f"{len(problems)} problems" in status(app)
+        await pilot.press("space")  # pause
+        assert "paused" in status(app)
+        assert abs(screen._programs.playback.duration - trajectory.duration) < 1e-9
+        await pilot.press("n")
+        await pilot.pause()
+        assert f"at {problems[0].time:.2f} s" in status(app) and "Th1" in status(app)
+        assert "!" in str(screen.query_one(ProgramPanel).render())  # the step is marked
+        await pilot.press("full_stop", "full_stop", "full_stop")  # to the end
+        await pilot.pause()
+        assert np.allclose(screen.q, trajectory.q[-1], atol=1e-6)
+        await pilot.press("comma", "comma", "comma")
+        await pilot.pause()
+        assert np.allclose(screen.q, trajectory.q[0], atol=1e-6)
