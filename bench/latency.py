@@ -29,10 +29,10 @@ from dhsim_tui.tui.app import DhsimApp
 
 
 async def measure(
-    robot_name: str, size: tuple[int, int], presses: int, renderer: str
+    robot_name: str, size: tuple[int, int], presses: int, renderer: str, playing: bool = False
 ) -> list[float]:
     robot, path = load_robot(robot_name)
-    app = DhsimApp(robot, path, renderer)
+    app = DhsimApp(robot, path, renderer, animate=False)
     samples: list[float] = []
     async with app.run_test(size=size) as pilot:
         await pilot.pause()
@@ -46,6 +46,8 @@ async def measure(
                 frame.set()
 
         app._display = display  # type: ignore[method-assign]
+        if playing:
+            return await _during_playback(app, pilot, frame, presses)
         step_keys = ("right", "left")  # back and forth: never stopped by a limit
         for i in range(presses):
             await pilot.pause()
@@ -57,6 +59,32 @@ async def measure(
             samples.append(time.perf_counter() - start)
             if i == 0:  # the measured frames really are the key's effect
                 assert app.screen.q[0] == robot.home[0] + 1.0, app.screen.q
+    return samples
+
+
+async def _during_playback(app, pilot, frame: asyncio.Event, presses: int) -> list[float]:
+    """``tab`` (the next view) while the robot's first program plays, over and
+    over: from the key to the first frame that shows the view it selected."""
+    from dhsim_tui.tui.widgets.views_panel import ViewsPanel
+
+    views = app.screen.query_one(ViewsPanel)
+    await pilot.press("g", "space")
+    samples = []
+    for _ in range(presses):
+        player = app.screen._programs
+        if not player.playing:  # at the end: again from the start
+            app.screen.q = app.robot.home
+            await pilot.press("space")
+        await pilot.pause()
+        expected = (views.selected + 1) % len(views.views)
+        start = time.perf_counter()
+        app.post_message(events.Key("tab", None))
+        while True:
+            frame.clear()
+            await asyncio.wait_for(frame.wait(), 5)
+            if views.selected == expected:
+                break
+        samples.append(time.perf_counter() - start)
     return samples
 
 
@@ -101,9 +129,16 @@ def main() -> None:
     parser.add_argument("--robot", default="puma560")
     parser.add_argument("--renderer", default="plotext", choices=("plotext", "braille"))
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument(
+        "--during-playback",
+        action="store_true",
+        help="press tab while the robot's first program plays (g, space)",
+    )
     args = parser.parse_args()
     width, height = (int(v) for v in args.size.split("x"))
-    samples = asyncio.run(measure(args.robot, (width, height), args.presses, args.renderer))
+    samples = asyncio.run(
+        measure(args.robot, (width, height), args.presses, args.renderer, args.during_playback)
+    )
     ms = sorted(s * 1000 for s in samples)
     p95 = ms[min(len(ms) - 1, round(0.95 * (len(ms) - 1)))]
     first, peak = first_frame_and_memory(args.robot, (width, height), args.renderer)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import shutil
 import sys
 from pathlib import Path
@@ -31,6 +32,7 @@ from dhsim_tui.core.model.text import counted, printable, shortened
 from dhsim_tui.core.model.validation import check_joint_values
 from dhsim_tui.core.motion.path_check import check_path
 from dhsim_tui.core.motion.trajectory import DEFAULT_RATE, MAX_RATE, MIN_RATE, sample
+from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
 #: the exit status when the path check found problems
 EXIT_PROBLEMS = 3
@@ -165,11 +167,22 @@ def cmd_program(args: argparse.Namespace) -> int:
             write_file(args.csv, text.encode("utf-8"), overwrite=args.force)
             print(printable(f"wrote {args.csv}"), file=sys.stderr if args.json else sys.stdout)
     if args.plot:
-        from dhsim_tui.cli.run_plot import plot_text
+        from dhsim_tui.render.program_plot import plot_text  # plotext: loaded when asked for
 
         size = shutil.get_terminal_size((100, 32))
-        print(plot_text(trajectory, problems, size.columns, max(16, size.lines - 2)))
+        colour = _coloured()
+        ascii = wants_ascii(original_environ(), force=None)
+        rows = max(16, size.lines - 2)
+        print(plot_text(trajectory, problems, size.columns, rows, colour=colour, ascii=ascii))
     return EXIT_PROBLEMS if problems else 0
+
+
+def _coloured() -> bool:
+    """A plot in colour: on a terminal, unless NO_COLOR is set."""
+    try:
+        return os.isatty(sys.stdout.fileno()) and "NO_COLOR" not in os.environ
+    except (AttributeError, OSError, ValueError):
+        return False
 
 
 def subparsers(parser_class: type[argparse.ArgumentParser]) -> dict[str, argparse.ArgumentParser]:

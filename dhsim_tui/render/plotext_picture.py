@@ -46,6 +46,7 @@ ASCII_MARKS = {
     "floor": "_",
     "floor_hit": "!",
     "shadow": ",",
+    "trail": ":",
     "pedestal": "H",
     "link": "#",
     "x": "x",

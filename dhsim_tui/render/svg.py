@@ -32,6 +32,7 @@ STROKES: dict[str, tuple[str, float, str]] = {
     "floor": ("#9a9a9a", 1.2, "5 3"),
     "floor_hit": ("#c000c0", 2.0, "5 3"),
     "shadow": ("#cfcfcf", 3.0, ""),
+    "trail": ("#2f8f8f", 1.2, "3 2"),
     "x": ("#d62728", 1.6, ""),
     "y": ("#2ca02c", 1.6, ""),
     "z": ("#1f77b4", 1.6, ""),

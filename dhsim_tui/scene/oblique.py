@@ -202,6 +202,8 @@ def project_oblique(wire: Wireframe, orbit: Orbit = Orbit(), frames: str = "all"
     floor = [Polyline(*_tuples(to_2d(grid)), "grid"), Polyline(*_tuples(to_2d(outline)), role)]
     if wire.shadow is not None:
         floor.append(Polyline(*_tuples(to_2d(wire.shadow)), "shadow"))
+    if wire.trail is not None and len(wire.trail) > 1:
+        floor.append(Polyline(*_tuples(to_2d(wire.trail)), "trail"))
     lines, tips, ee, arm, marks, fit = wire_lines(wire, to_2d, floor, frames)
     return ViewScene(
         view=ISO,

@@ -23,6 +23,7 @@ ROLES = (
     "floor",
     "floor_hit",
     "shadow",
+    "trail",
     "x",
     "y",
     "z",
@@ -214,6 +215,9 @@ def project(wire: Wireframe, view: View, frames: str = "all") -> ViewScene:
     def to_2d(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return points[:, view.right], points[:, view.up]
 
+    if wire.trail is not None and len(wire.trail) > 1:  # a program's path, under the arm
+        xs, ys = to_2d(wire.trail)
+        floor.append(Polyline(tuple(xs.tolist()), tuple(ys.tolist()), "trail"))
     lines, tips, ee, arm, marks, fit = wire_lines(wire, to_2d, floor, frames)
     if view.up != 2:  # the pedestal stands straight up: a point from above
         lines = tuple(line for line in lines if line.role != "pedestal")

@@ -52,6 +52,8 @@ class Wireframe:
     joint_types: tuple[str, ...] = ()
     #: the links dropped straight down onto the floor (the 3-D view's depth cue)
     shadow: np.ndarray | None = None
+    #: the tool's path (a program played): world points, drawn under the arm
+    trail: np.ndarray | None = None
 
     @property
     def warnings(self) -> tuple[str, ...]:
@@ -70,8 +72,9 @@ class Wireframe:
         return np.arange(count)
 
 
-def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
-    """``frames`` is Kinematics.frames(q): (n + 2, 4, 4), frames 0..n and the tool."""
+def build_wireframe(robot: Robot, frames: np.ndarray, trail: np.ndarray | None = None) -> Wireframe:
+    """``frames`` is Kinematics.frames(q): (n + 2, 4, 4), frames 0..n and the
+    tool; ``trail`` the tool's path to draw (world points), if any."""
     origins = frames[:, :3, 3]
     n = robot.dof
     drawn = frames if not robot.tool.is_identity else frames[: n + 1]
@@ -109,4 +112,5 @@ def build_wireframe(robot: Robot, frames: np.ndarray) -> Wireframe:
         joints=joints,
         joint_types=tuple(joint.type for joint in robot.joints),
         shadow=shadow,
+        trail=None if trail is None else np.asarray(trail, dtype=float).reshape(-1, 3),
     )

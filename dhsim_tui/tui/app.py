@@ -14,7 +14,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from textual import work
+from textual import events, work
 from textual.binding import Binding
 from textual.driver import Driver
 from textual.drivers.linux_driver import LinuxDriver
@@ -333,6 +333,20 @@ class DhsimApp(KeysInOrder):
         """Write every unsaved robot to a recovery file; what to tell the user.
         Safe in a signal handler (no lock, no terminal output)."""
         return keep_in_recovery(self.unsaved_work(), signum)
+
+    async def on_event(self, event: events.Event) -> None:
+        """A press that lands on a widget as it leaves the screen is dropped:
+        Textual's text selection reads the widget's parent, already gone
+        (``'NoneType' object has no attribute 'region'``, found by the long
+        monkey); anything else is raised as before."""
+        if not isinstance(event, events.MouseDown):
+            await super().on_event(event)
+            return
+        try:
+            await super().on_event(event)
+        except AttributeError as exc:
+            if "'region'" not in str(exc):
+                raise
 
     def _handle_exception(self, error: Exception) -> None:
         """An unexpected error ends the app (status 1): keep unsaved work

@@ -40,6 +40,9 @@ ARROWS = {"up": "↑", "down": "↓", "left": "←", "right": "→"}
 #: how other keys are named in the legend and the help (Textual's key names)
 KEY_NAMES = {
     "plus": "+",
+    "comma": ",",
+    "full_stop": ".",
+    "space": "space",
     "minus": "-",
     "question_mark": "?",
     "left_square_bracket": "[",

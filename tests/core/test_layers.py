@@ -218,7 +218,9 @@ def _lint_imports(cwd: Path, package_parent: Path) -> subprocess.CompletedProces
     lint = Path(sys.executable).with_name("lint-imports")
     env = {**os.environ, "PYTHONPATH": str(package_parent), "COLUMNS": "250"}
     return subprocess.run(
-        [str(lint), "--no-cache", "--no-logo", str(cwd / "pyproject.toml")],
+        # the contracts in cwd's pyproject.toml (import-linter 2.15, the last for
+        # Python 3.10, takes no path; later ones read the same file by default)
+        [str(lint), "--no-cache", "--no-logo"],
         cwd=cwd,
         env=env,
         capture_output=True,

@@ -22,7 +22,7 @@ from dhsim_tui.core.files import recovery
 from dhsim_tui.core.files.library import bundled_names, load_robot
 from dhsim_tui.core.files.robotfile import dumps, load, loads, save
 from dhsim_tui.core.files.tomlparse import tomllib
-from dhsim_tui.core.model.errors import RobotFileError
+from dhsim_tui.core.model.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model.program import Program, Step
 from dhsim_tui.core.model.text import control_character
 
@@ -430,3 +430,13 @@ def test_recovery_files_keep_programs_and_top_speeds(tmp_path, monkeypatch):
     assert found.robot == robot
     assert found.robot.programs[1] == Program("b", (Step("wait", seconds=2.0),))
     assert found.robot.joints[1].vmax == 45.0
+
+
+@pytest.mark.parametrize("name", ["a\x1b[2Jb", "x\u202ey", "n" * 1001])
+def test_a_program_name_made_in_code_is_checked_as_a_pose_name(name):
+    """Not only on load: the model refuses such a name however it is made
+    (the simulator's panel shows it)."""
+    robot = load_robot("puma560")[0]
+    with pytest.raises(DhsimError) as caught:
+        replace(robot, programs=(Program(name, (Step("joint", "qr"),)),))
+    assert "program name" in str(caught.value)

@@ -256,6 +256,29 @@ async def test_a_list_key_while_the_palette_leaves_does_nothing():
         palette._action_command_list("cursor_down")  # no list: nothing
         assert palette._gather_commands("go") is None  # no search started either
         palette.dismiss()
+        palette.dismiss()  # a command chosen as it leaves: no second pop
         palette._action_command_list("cursor_down")  # leaving: nothing
         await pilot.pause()
         assert app.return_code is None and isinstance(app.screen, ControlScreen)
+
+
+async def test_a_press_on_a_widget_leaving_the_screen_is_dropped(monkeypatch):
+    """The long monkey's other crash: Textual's text selection read the parent
+    of a widget that had just left ('NoneType' ... 'region')."""
+    from textual import events
+    from textual.screen import Screen
+
+    def gone(self, event):
+        raise AttributeError("'NoneType' object has no attribute 'region'")
+
+    app = DhsimApp(load_robot("puma560")[0])
+    async with app.run_test(size=(80, 24)) as pilot:
+        await until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
+        monkeypatch.setattr(Screen, "_forward_event", gone)
+        press = events.MouseDown(None, 10, 3, 0, 0, 1, False, False, False, screen_x=10, screen_y=3)
+        await app.on_event(press)  # as the driver hands a press to the app
+        await pilot.pause()
+        monkeypatch.undo()
+        await pilot.press("right")
+        await pilot.pause()
+        assert app.return_code is None and app.screen.q[0] != 0.0

@@ -17,6 +17,7 @@ from dhsim_tui.core.motion.trajectory import sample
 from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
+from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
@@ -57,9 +58,8 @@ async def test_record_two_poses_and_play_them():
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["joint", "joint"]
         await pilot.press("space")
-        await until(pilot, lambda: "playing program1" in status(app), "playback")
-        duration = screen._programs.playback.duration
-        assert duration > 0
+        await until(pilot, lambda: screen._programs.playback is not None, "playback")
+        assert screen._programs.playback.duration > 0
         await until(pilot, lambda: "played program1" in status(app), "the end of playback")
         assert np.allclose(screen.q, moved, atol=1e-6)  # the last step's pose
         assert "kept until you quit" in status(app) or app.has_unsaved_poses
@@ -91,3 +91,55 @@ async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it():
         await pilot.press("comma", "comma", "comma")
         await pilot.pause()
         assert np.allclose(screen.q, trajectory.q[0], atol=1e-6)
+
+
+async def test_the_tools_path_is_drawn_in_every_view_while_a_program_is_loaded():
+    robot = load_robot("puma560")[0]
+    demo = robot.program("demo")
+    app = DhsimApp(robot, animate=False)
+    async with app.run_test(size=(120, 36)) as pilot:
+        screen = await started(pilot)
+        views = screen.query_one(ViewsPanel)
+
+        def trails():
+            return [
+                [line for line in view.scene.lines if line.role == "trail"] for view in views.views
+            ]
+
+        assert all(not found for found in trails())
+        await pilot.press("g", "space")
+        await until(pilot, lambda: all(trails()), "the path in every view")
+        # the front view (x right, z up) shows the sampled tool positions themselves
+        trajectory = sample(robot, demo, 100.0, start=robot.home)
+        (front,) = trails()[1]
+        xs, zs = np.array(front.xs), np.array(front.ys)
+        assert np.isclose(xs[-1], trajectory.xyz[-1, 0]) and np.isclose(
+            zs[-1], trajectory.xyz[-1, 2]
+        )
+        assert xs.min() >= trajectory.xyz[:, 0].min() - 1e-9
+        assert xs.max() <= trajectory.xyz[:, 0].max() + 1e-9
+        assert "path" in str(views.query_one(".legend").render())
+        await pilot.press("space", "ctrl+up")  # pause; a change to the program: the path goes
+        await pilot.pause()
+        await until(pilot, lambda: not any(trails()), "the path gone")
+
+
+async def test_play_faster_and_the_plot_at_the_time_played():
+    robot = load_robot("puma560")[0]
+    app = DhsimApp(robot, animate=False)
+    async with app.run_test(size=(100, 30)) as pilot:
+        screen = await started(pilot)
+        await pilot.press("g", "right_square_bracket", "right_square_bracket")
+        assert screen._programs.speed == 4.0 and "×4" in status(app)
+        began = screen._programs
+        await pilot.press("space")
+        await until(pilot, lambda: began.playback is not None and began.playback.time > 0.5, "play")
+        await until(pilot, lambda: "played demo" in status(app), "the end, four times as fast")
+        # 7.85 s of program in about 2 s: well under the real-time length
+        await pilot.press("comma")
+        await pilot.press("t")
+        await until(pilot, lambda: type(app.screen).__name__ == "ProgramPlot", "the plot")
+        text = str(app.screen.query_one("#plot").render())
+        assert "joints" in text and "tool speed" in text
+        await pilot.press("escape")
+        await until(pilot, lambda: app.screen is screen, "back")

@@ -77,6 +77,11 @@ def test_control_program_panel(snap_compare):
     assert snap_compare(APP, press=("g", "down"), terminal_size=(80, 24))
 
 
+def test_control_program_plot(snap_compare):
+    """t on the program panel: the demo's joints and tool speed against time."""
+    assert snap_compare(APP, press=("g", "t"), terminal_size=(100, 30))
+
+
 # -- the views in every mode a terminal can ask for ---------------------------------
 
 

@@ -29,7 +29,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.text import printable, shortened
+from dhsim_tui.core.model.text import control_character, printable, shortened
 from dhsim_tui.core.model.units import mm_to_unit
 
 MOVES = ("joint", "linear")
@@ -46,6 +46,8 @@ PRISMATIC_AMAX_MM = 1000.0
 #: the longest wait (s) and the most steps a program may have
 MAX_WAIT = 3600.0
 MAX_STEPS = 1000
+#: the longest program name (as a pose name: validation.MAX_NAME_CHARS)
+MAX_PROGRAM_NAME = 1000
 
 
 @dataclass(frozen=True)
@@ -129,8 +131,17 @@ def check_programs(robot) -> None:
         name = program.name
         if not isinstance(name, str) or not name.strip():
             raise DhsimError("programs: a program needs a non-empty name")
+        where = f"programs.{printable(shortened(name))}"
+        found = control_character(name)
+        if found is not None:  # shown on the screen: as pose names, none (or one said)
+            raise DhsimError(f"{where}: a program name may not hold control characters ({found})")
+        if len(name) > MAX_PROGRAM_NAME:
+            raise DhsimError(
+                f"{where}: a program name has at most {MAX_PROGRAM_NAME} characters; "
+                f"this one has {len(name)}"
+            )
         if name in seen:
-            raise DhsimError(f"programs.{printable(shortened(name))}: the name is used twice")
+            raise DhsimError(f"{where}: the name is used twice")
         seen.add(name)
         if len(program.steps) > MAX_STEPS:
             raise DhsimError(

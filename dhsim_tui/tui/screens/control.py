@@ -243,7 +243,7 @@ class ControlScreen(Screen):
         frames = self.robot.kinematics.frames(self.q)
         self.pose = read_out(frames[-1])
         self.dexterity = dexterity(self.robot, jac=jacobian_from_frames(self.robot, frames))
-        wire = build_wireframe(self.robot, frames)
+        wire = build_wireframe(self.robot, frames, self._programs.trail)
         self._views.show(wire)
         self._joints.show(self.q)
         self.warnings = wire.warnings
@@ -674,6 +674,11 @@ class ControlScreen(Screen):
         """A program starts playing: a smooth move stops where it is."""
         self._stop_motion()
 
+    def refresh_views(self) -> None:
+        """The program's path came or went: the views draw it (or not) now."""
+        if self._ready:
+            self._refresh_pose()
+
     def action_record(self) -> None:
         self._programs.record()
         self.add_class("-program")
@@ -689,6 +694,12 @@ class ControlScreen(Screen):
 
     def on_program_panel_next_problem(self, message: ProgramPanel.NextProblem) -> None:
         self._programs.next_problem()
+
+    def on_program_panel_plot_asked(self, message: ProgramPanel.PlotAsked) -> None:
+        self._programs.plot()
+
+    def on_program_panel_speed_asked(self, message: ProgramPanel.SpeedAsked) -> None:
+        self._programs.change_speed(message.delta)
 
     # -- the views panel ------------------------------------------------------------
     def on_views_panel_maximised(self, message: ViewsPanel.Maximised) -> None:

@@ -16,6 +16,7 @@ from dataclasses import replace
 from time import monotonic
 from typing import Protocol
 
+import numpy as np
 from textual.timer import Timer
 
 from dhsim_tui.core.model.errors import DhsimError
@@ -33,12 +34,17 @@ from dhsim_tui.core.motion.path_check import check_path
 from dhsim_tui.core.motion.playback import Playback
 from dhsim_tui.core.motion.trajectory import sample
 from dhsim_tui.tui.flows.values import shorten_path_in
+from dhsim_tui.tui.screens.program_plot import ProgramPlot
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 
 #: how many samples a second a program is played from
 PLAY_RATE = 100.0
 #: how often the views follow a program playing (s)
 PLAY_FRAME = 1 / 30
+#: the playback speeds [ and ] choose from (1: real time)
+SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0)
+#: the most points the tool's path is drawn with
+TRAIL_POINTS = 400
 NO_PROGRAM = "no program to play: R records the current pose as a step"
 
 
@@ -53,6 +59,7 @@ class Host(Protocol):
     def set_interval(self, interval: float, callback) -> Timer: ...
     def refresh_bindings(self) -> None: ...
     def stop_moving(self) -> None: ...
+    def refresh_views(self) -> None: ...
 
 
 class ProgramPlayer:
@@ -67,11 +74,22 @@ class ProgramPlayer:
         self.playback: Playback | None = None
         self._timer: Timer | None = None
         self._from = (0.0, 0.0)  # (monotonic time, time played) when play last began
+        self.speed = 1.0  # times real time
         panel.show(self.program())
 
     @property
     def playing(self) -> bool:
         return self._timer is not None
+
+    @property
+    def trail(self) -> np.ndarray | None:
+        """The tool's path of the program sampled (at most :data:`TRAIL_POINTS`
+        points), for the views; None when there is none."""
+        if self.playback is None:
+            return None
+        xyz = self.playback.trajectory.xyz
+        every = max(1, -(-len(xyz) // TRAIL_POINTS))
+        return np.vstack([xyz[::every], xyz[-1:]])
 
     def program(self) -> Program | None:
         robot = self.host.robot
@@ -125,6 +143,7 @@ class ProgramPlayer:
     def _keep(self, robot: Robot, message: str) -> None:
         """Its file saved (or kept until quit for a bundled robot), as P does."""
         self.pause()
+        had_path = self.playback is not None
         self.playback = None
         self.host.robot = robot
         app = self.host.app
@@ -138,6 +157,8 @@ class ProgramPlayer:
             self.host.say(message + where)
         self.panel.show(self.program())
         self.host.refresh_bindings()
+        if had_path:
+            self.host.refresh_views()  # the old path goes
 
     # -- playing -----------------------------------------------------------------------
     def toggle(self) -> None:
@@ -184,6 +205,7 @@ class ProgramPlayer:
             self.host.say(str(exc), error=True)
             return False
         self.playback = Playback(trajectory, check_path(trajectory))
+        self.host.refresh_views()  # the path, in every view
         return True
 
     def _start(self) -> None:
@@ -196,7 +218,7 @@ class ProgramPlayer:
         if playback is None:
             return
         began, at = self._from
-        playback.time = min(at + monotonic() - began, playback.duration)
+        playback.time = min(at + (monotonic() - began) * self.speed, playback.duration)
         self.host.q = playback.at(playback.time)
         self._show()
         if playback.done:
@@ -210,7 +232,26 @@ class ProgramPlayer:
             return
         step = playback.step_at(playback.time)
         self.panel.show(self.program(), step, playback.problems_per_step())
-        self.panel.border_subtitle = f"{playback.time:.2f} / {playback.duration:.2f} s"
+        speed = f"  ×{self.speed:g}" if self.speed != 1 else ""
+        self.panel.border_subtitle = f"{playback.time:.2f} / {playback.duration:.2f} s{speed}"
+
+    def change_speed(self, delta: int) -> None:
+        """[ ]: play slower or faster (×¼ to ×4), from where it is."""
+        index = SPEEDS.index(self.speed) if self.speed in SPEEDS else SPEEDS.index(1.0)
+        self.speed = SPEEDS[min(max(index + delta, 0), len(SPEEDS) - 1)]
+        if self.playing:
+            self.pause()
+            self._start()
+        self.host.say(f"playback at ×{self.speed:g}")
+
+    def plot(self) -> None:
+        """t: the joints and the tool speed against time, at the time played."""
+        if self._ready():
+            title = f"{self.name}: joints and tool speed against time"
+            playback = self.playback
+            self.host.app.push_screen(  # type: ignore[attr-defined]
+                ProgramPlot(title, playback.trajectory, playback.problems, playback.time)
+            )
 
     def seek(self, steps: int) -> None:
         """To the start of the step ``steps`` before or after."""

@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
+from textual.await_complete import AwaitComplete
 from textual.command import (
     CommandList,
     CommandPalette,
@@ -132,6 +133,10 @@ class DhsimPalette(CommandPalette):
             self.query_one(SearchIcon).icon = ">"
 
     def dismiss(self, result=None):
+        """Once, and only from the front (a command chosen as it leaves would
+        pop the screen under it: the long monkey's ScreenStackError)."""
+        if self._leaving or self.app.screen is not self:
+            return AwaitComplete()
         self._leaving = True
         self._stop_busy_countdown()
         self._stop_no_matches_countdown()

@@ -34,7 +34,11 @@ from dhsim_tui.core.motion.jog import CARTESIAN_ROWS, TOOL, WORLD
 from dhsim_tui.tui.keys import Keys
 from dhsim_tui.tui.widgets.joint_row import ascii_mode
 from dhsim_tui.tui.widgets.pose_panel import TextPanel, refresh_changed_lines
-from dhsim_tui.tui.widgets.stepping import STEP_SIZE_BINDINGS, StepSizeRequested
+from dhsim_tui.tui.widgets.stepping import (
+    STEP_SIZE_BINDINGS,
+    StepSizeRequested,
+    arrow_bindings,
+)
 
 #: the panel's title in each jogging frame (f switches)
 TITLES = {WORLD: "Cartesian: WORLD frame (f)", TOOL: "Cartesian: TOOL frame (f)"}
@@ -88,18 +92,7 @@ FRAME = Keys(
 )
 
 BINDINGS = [
-    Binding("up", "row(-1)", "Axis", key_display="↑↓", id="cartesian.prev",
-            tooltip="Select the previous axis", group=SELECT),
-    Binding("down", "row(1)", "Axis", show=False, id="cartesian.next",
-            tooltip="Select the next axis", group=SELECT),
-    Binding("left", "jog(-1)", "Move tool", key_display="←→", id="cartesian.step_down",
-            tooltip="Move tool: one step down", group=MOVE),
-    Binding("right", "jog(1)", "Move tool", show=False, id="cartesian.step_up",
-            tooltip="Move tool: one step up", group=MOVE),
-    Binding("shift+left", "jog(-10)", "×10", show=False, id="cartesian.big_step_down",
-            tooltip="Ten steps down", group=BIG_MOVE),
-    Binding("shift+right", "jog(10)", "×10", show=False, id="cartesian.big_step_up",
-            tooltip="Ten steps up", group=BIG_MOVE),
+    *arrow_bindings("cartesian", "row", "jog", "Axis", "Move tool", (SELECT, MOVE, BIG_MOVE)),
     *STEP_SIZE_BINDINGS,
     Binding("enter", "ask_target", "Set", key_display="⏎", show=False, id="cartesian.enter",
             tooltip="Type a target for the selected axis", group=ENTER),

@@ -19,7 +19,11 @@ from textual.reactive import reactive
 
 from dhsim_tui.tui.keys import Keys
 from dhsim_tui.tui.widgets.joint_row import JointRow, ascii_mode
-from dhsim_tui.tui.widgets.stepping import STEP_SIZE_BINDINGS, StepSizeRequested
+from dhsim_tui.tui.widgets.stepping import (
+    STEP_SIZE_BINDINGS,
+    StepSizeRequested,
+    arrow_bindings,
+)
 
 __all__ = ["JointPanel", "JointRow", "ascii_mode"]
 
@@ -29,18 +33,7 @@ BIG_STEP = Keys(legend=False, help="ten steps at once")
 ENTER = Keys("exact value", help="type the selected joint's exact value")
 
 BINDINGS = [
-    Binding("up", "select(-1)", "Joint", key_display="↑↓", id="joint.prev",
-            tooltip="Select the previous joint", group=SELECT),
-    Binding("down", "select(1)", "Joint", show=False, id="joint.next",
-            tooltip="Select the next joint", group=SELECT),
-    Binding("left", "step(-1)", "Step", key_display="←→", id="joint.step_down",
-            tooltip="Step: one step down", group=STEP),
-    Binding("right", "step(1)", "Step", show=False, id="joint.step_up",
-            tooltip="Step: one step up", group=STEP),
-    Binding("shift+left", "step(-10)", "×10", show=False, id="joint.big_step_down",
-            tooltip="Ten steps down", group=BIG_STEP),
-    Binding("shift+right", "step(10)", "×10", show=False, id="joint.big_step_up",
-            tooltip="Ten steps up", group=BIG_STEP),
+    *arrow_bindings("joint", "select", "step", "Joint", "Step", (SELECT, STEP, BIG_STEP)),
     *STEP_SIZE_BINDINGS,
     Binding("enter", "ask_value", "Set", key_display="⏎", show=False, id="joint.enter",
             tooltip="Type the exact value of the selected joint", group=ENTER),

@@ -33,6 +33,7 @@ def legend_items(
     pedestal: bool = False,
     frames: str = "all",
     cloud: bool = False,
+    trail: bool = False,
 ) -> list[Text]:
     """The legend's items, most important first."""
     kinds = set(joint_types)
@@ -57,6 +58,8 @@ def legend_items(
     if cloud:  # just asked for (W): named before the rest
         glyph = CLOUD_GLYPHS[0 if ascii else 1 if mono else 2]
         items.append(item(glyph, "cloud", "workspace"))
+    if trail:  # a program played: the tool's path
+        items.append(item(":" if ascii else "┈", "trail", "path"))
     items.append(Text(f"frames: {FRAMES_SHORT[frames]} (x)"))
     if frames != "none":
         if ascii or mono:
@@ -101,6 +104,7 @@ def legend_line(
     frames: str,
     cloud: bool,
     width: int,
+    trail: bool = False,
 ) -> tuple[Text, bool]:
     """The legend packed into ``width`` columns, and whether it is too
     cramped to show (it would not name the links, the joints and the tool):
@@ -113,6 +117,7 @@ def legend_line(
         pedestal=pedestal,
         frames=frames,
         cloud=cloud,
+        trail=trail,
     )
     kinds = len(set(joint_types)) if joint_types else 1
     essential = pack(items[: ESSENTIAL + kinds - 1], 10**6).cell_len

@@ -29,6 +29,8 @@ DELETE = Keys("delete step", help="delete the selected step")
 MOVE = Keys("move step", help="move the selected step up / down")
 UNDO = Keys("undo", help="undo the last change to the program")
 SEEK = Keys("step back/on", help="playback: to the start of the step before / after")
+PLOT = Keys("plot", help="the joints and the tool speed against time, at the time played")
+SPEED = Keys("play speed", help="playback slower / faster: ×¼ ×½ ×1 ×2 ×4")
 PROBLEM = Keys("next problem", help="playback: to the next problem the path check found")
 
 BINDINGS = [
@@ -52,6 +54,12 @@ BINDINGS = [
             tooltip="To the start of the next step", group=SEEK),
     Binding("n", "next_problem", "Next problem", show=False, id="program.problem",
             tooltip="To the next problem the path check found", group=PROBLEM),
+    Binding("t", "plot", "Plot", show=False, id="program.plot",
+            tooltip="The joints and the tool speed against time", group=PLOT),
+    Binding("left_square_bracket", "speed(-1)", "Slower", show=False, id="program.slower",
+            tooltip="Play slower", group=SPEED),
+    Binding("right_square_bracket", "speed(1)", "Faster", show=False, id="program.faster",
+            tooltip="Play faster", group=SPEED),
 ]  # fmt: skip
 
 
@@ -116,6 +124,15 @@ class ProgramPanel(TextPanel, can_focus=True):
     class NextProblem(Message):
         """Playback to the next problem."""
 
+    class PlotAsked(Message):
+        """``t``: the program's plot."""
+
+    @dataclass
+    class SpeedAsked(Message):
+        """``[`` or ``]``: play slower (-1) or faster (1)."""
+
+        delta: int
+
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self._shown: tuple = (None, None, {})
@@ -151,6 +168,12 @@ class ProgramPanel(TextPanel, can_focus=True):
 
     def action_next_problem(self) -> None:
         self.post_message(self.NextProblem())
+
+    def action_plot(self) -> None:
+        self.post_message(self.PlotAsked())
+
+    def action_speed(self, delta: int) -> None:
+        self.post_message(self.SpeedAsked(delta))
 
     def on_click(self, event: events.Click) -> None:
         """A click on a step selects it."""

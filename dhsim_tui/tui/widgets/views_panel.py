@@ -120,7 +120,9 @@ class ViewsPanel(Container):
         pedestal = wire is not None and wire.pedestal is not None
         width = max(self.size.width - 2, 0)
         look = look_of(self.app)
+        trail = wire is not None and wire.trail is not None
         key = (
+            trail,
             look,
             self.app.theme,
             width,
@@ -142,6 +144,7 @@ class ViewsPanel(Container):
             self.frames,
             self._cloud is not None,
             width,
+            trail,
         )
         self.set_class(cramped, "-cramped")
         self.query_one(".legend", Static).update(text)
@@ -167,7 +170,8 @@ class ViewsPanel(Container):
         new_robot = self._wire is None or (
             self._wire.joint_types,
             self._wire.pedestal is None,
-        ) != (wire.joint_types, wire.pedestal is None)
+            self._wire.trail is None,
+        ) != (wire.joint_types, wire.pedestal is None, wire.trail is None)
         self._wire = wire
         scenes = [project(wire, view, self.frames) for view in ORTHO_VIEWS]
         scenes.append(project_oblique(wire, self.orbit, self.frames))

@@ -1,6 +1,7 @@
-"""``dhsim run --plot``: a program's joints and tool speed against time,
-drawn with plotext in the terminal (on a figure of our own, as
-:mod:`dhsim_tui.render.plotext_picture` does: plotext is pinned).
+"""A program's joints and tool speed against time, drawn with plotext as
+text (on a figure of our own, as :mod:`dhsim_tui.render.plotext_picture`
+does: plotext is pinned): ``dhsim run --plot`` prints it, the simulator's
+program panel shows it (``t``) with a cursor at the time played.
 
 Two plots, one above the other, sharing the time axis:
 
@@ -10,21 +11,17 @@ Two plots, one above the other, sharing the time axis:
 
 Step boundaries are vertical lines in both, and the step numbers label the
 upper plot's time axis; each problem is an ``x`` on the speed line at its
-first sample. On a terminal the lines are coloured; otherwise (a pipe, a
-file) there is no colour and each joint is drawn with its own digit, and
-in 7-bit ASCII (the locale, or TERM=linux) the frame is drawn in ASCII too.
+first sample. In colour the lines are coloured; without (a pipe, a file,
+NO_COLOR) each joint is drawn with its own digit, and in 7-bit ASCII the
+frame is drawn in ASCII too: the caller says which (``colour``, ``ascii``).
 """
 
 from __future__ import annotations
 
-import os
 import re
-import sys
 
 import numpy as np
 from plotext._figure import _figure_class
-
-from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
 #: the joints' colours, in turn (plotext's names)
 COLOURS = ("blue+", "green+", "orange+", "magenta+", "cyan+", "yellow+", "red+")
@@ -32,13 +29,6 @@ _SGR = re.compile(r"\x1b\[[0-9;]*m")
 _ASCII_FRAME = str.maketrans("─│┤┬└┼┌┐┘├┴", "-|+++++++++")
 #: the most points a line gets (plotext's time grows with them)
 MAX_POINTS = 2000
-
-
-def _coloured() -> bool:
-    try:
-        return os.isatty(sys.stdout.fileno()) and "NO_COLOR" not in os.environ
-    except (AttributeError, OSError, ValueError):
-        return False
 
 
 def _thin(count: int) -> np.ndarray:
@@ -49,11 +39,17 @@ def _thin(count: int) -> np.ndarray:
 
 
 def plot_text(
-    trajectory, problems, width: int, height: int, *, colour: bool | None = None, ascii=None
+    trajectory,
+    problems,
+    width: int,
+    height: int,
+    *,
+    colour: bool,
+    ascii: bool,
+    cursor: float | None = None,
 ) -> str:
-    """The two plots as text ``width`` columns by ``height`` rows."""
-    colour = _coloured() if colour is None else colour
-    ascii = wants_ascii(original_environ(), force=None) if ascii is None else ascii
+    """The two plots as text ``width`` columns by ``height`` rows; ``cursor``:
+    a time marked by a vertical line in both (the time played)."""
     robot = trajectory.robot
     picked = _thin(len(trajectory.time))
     time = trajectory.time[picked].tolist()
@@ -80,6 +76,8 @@ def plot_text(
             joints.hline(limit, tint)
     for start in starts:
         joints.vline(start, "gray" if colour else None)
+    if cursor is not None:
+        joints.vline(cursor, "white" if colour else None)
     units = "deg" if all(j.is_revolute for j in robot.joints) else f"deg, {robot.units}"
     joints.title(f"joints ({units}) against time; steps at the ticks, limits as lines")
     joints.xlim(0.0, duration)
@@ -97,6 +95,8 @@ def plot_text(
     )
     for start in starts:
         speeds.vline(start, "gray" if colour else None)
+    if cursor is not None:
+        speeds.vline(cursor, "white" if colour else None)
     if problems:
         times = [problem.time for problem in problems]
         at = np.searchsorted(trajectory.time, times).clip(0, len(speed) - 1)
