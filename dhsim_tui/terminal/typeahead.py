@@ -116,6 +116,8 @@ class KeysInOrder(App):
     async def _release(self) -> None:
         """Hand on the keys that waited, one at a time."""
         held = getattr(self, "_held", None)
+        if held and not self.screen_stack:  # quitting: no screen is left to take them
+            held.clear()
         while held and self._in_flight is None:
             await self._send(held.pop(0))
         if held:
@@ -124,6 +126,8 @@ class KeysInOrder(App):
     def _dialog_starting(self) -> bool:
         """The key put a screen in front, or started a dialog worker
         (``@work(group="modal")``) that has not finished."""
+        if not self.screen_stack:  # quitting: the screens are gone, no dialog is coming
+            return False
         screen, workers = self._before
         return self.screen is not screen or bool(self._modal_workers() - workers)
 
@@ -131,6 +135,8 @@ class KeysInOrder(App):
         """Nothing the key started is still on its way: no dialog is coming,
         or the one that came is mounted with its focus handled (an Input
         selects its text then), so the next key is typed into it."""
+        if not self.screen_stack:  # quitting: nothing is on its way
+            return True
         screen, _ = self._before
         if self.screen is screen:
             return not self._dialog_starting()
@@ -150,6 +156,8 @@ class KeysInOrder(App):
     def _messages_waiting(self) -> bool:
         """A message waits in the focused widget or one of its ancestors up to
         the screen (where the effects of a key bubble)."""
+        if not self.screen_stack:
+            return False
         node = self.focused or self.screen
         while node is not None:
             if not node._message_queue.empty():

@@ -71,3 +71,28 @@ async def test_a_value_typed_right_after_enter_lands_in_the_editor_cell(tmp_path
         )
         assert app.screen is editor
         assert editor.robot.joints[0].a == -14.0
+
+
+async def test_keys_in_flight_as_the_screens_go_at_quit_do_nothing():
+    """The long monkey's last crash: a key's check-back ran as dhsim quit,
+    with no screen left (ScreenStackError in a crash report)."""
+    app = DhsimApp(load_robot("puma560")[0])
+    async with app.run_test(size=(80, 24)) as pilot:
+        await until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
+        stacks = app._screen_stacks
+        mode = app._current_mode
+        kept = stacks[mode]
+        app._before = (app.screen, frozenset())
+        app._held = [events.Key("right", None)]
+        stacks[mode] = []  # as while the app closes its screens
+        try:
+            assert app._dialog_starting() is False
+            assert app._settled() is True
+            assert app._messages_waiting() is False
+            await app._release()
+            assert app._held == []
+        finally:
+            stacks[mode] = kept
+        await pilot.press("right")
+        await pilot.pause()
+        assert app.return_code is None and app.screen.q[0] != 0.0
