@@ -106,6 +106,9 @@ SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
         ),
     ),
     ("help-80x24", "puma560", (80, 24), ("question_mark",)),
+    # the demo program: its panel, its path in every view, at the start of step 3
+    ("program-120x36", "puma560", (120, 36), ("g", "full_stop", "full_stop")),
+    ("program-plot-100x30", "puma560", (100, 30), ("g", "full_stop", "full_stop", "t")),
     (
         "cartesian-160x48",
         "puma560",
