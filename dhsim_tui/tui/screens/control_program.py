@@ -273,7 +273,11 @@ class ProgramPlayer:
         )
 
     def _jump(self) -> None:
+        """The arm to the time played; the step there selected in the panel."""
         playing = self.pause()
+        step = self.playback.step_at(self.playback.time)
+        if step:
+            self.panel.selected = step - 1
         self.host.q = self.playback.at(self.playback.time)
         self._show()
         if playing:
