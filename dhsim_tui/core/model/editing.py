@@ -27,6 +27,20 @@ from dhsim_tui.core.model.text import counted
 from dhsim_tui.core.model.validation import check_number, perpendicular_axes
 
 JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max", "offset")
+#: a robot's fields at the top level, in the order the editor lists them
+#: (and a reload's merge asks about them)
+ROBOT_FIELDS = (
+    "name",
+    "units",
+    "convention",
+    "base_height",
+    "base_z",
+    "base_x",
+    "base_xyz",
+    "base_rpy",
+    "tool_xyz",
+    "tool_rpy",
+)
 #: fields whose numbers are lengths (converted when the unit changes)
 LENGTH_FIELDS = ("d", "a")
 #: a file name for a robot: letters, digits, space, dot, dash, underscore

@@ -25,7 +25,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Literal
 
-from dhsim_tui.core.model.editing import set_units
+from dhsim_tui.core.model.editing import ROBOT_FIELDS, set_units
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.program import Program
 from dhsim_tui.core.model.robot import Joint, Robot, Tool
@@ -33,18 +33,7 @@ from dhsim_tui.core.model.validation import fmt
 
 Side = Literal["mine", "theirs"]
 #: a robot's fields at the top level, in the order they are asked about
-TOP_FIELDS = (
-    "name",
-    "units",
-    "convention",
-    "base_height",
-    "base_z",
-    "base_x",
-    "base_xyz",
-    "base_rpy",
-    "tool_xyz",
-    "tool_rpy",
-)
+TOP_FIELDS = ROBOT_FIELDS
 JOINT_FIELDS = tuple(f.name for f in fields(Joint))
 #: the key of the whole table (joints added, deleted or moved on a side)
 TABLE = "joints"

@@ -18,6 +18,7 @@ from textual import events
 from textual.coordinate import Coordinate
 from textual.widgets import DataTable
 
+from dhsim_tui.core.model.editing import ROBOT_FIELDS
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.validation import fmt
@@ -25,18 +26,7 @@ from dhsim_tui.tui.screens.dialogs import short_path
 
 Cell = str | Text
 
-FIELD_ROWS = (
-    "name",
-    "units",
-    "convention",
-    "base_height",
-    "base_z",
-    "base_x",
-    "base_xyz",
-    "base_rpy",
-    "tool_xyz",
-    "tool_rpy",
-)
+FIELD_ROWS = ROBOT_FIELDS  # the fields panel's rows
 FIELD_LABELS = {
     "name": "name",
     "units": "units",
