@@ -15,7 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from dhsim_tui.core.files.library import load_robot
-from dhsim_tui.core.ik.numerical import solve
+from dhsim_tui.core.ik.nearest import inverse
 from dhsim_tui.core.ik.reasons import angle, length
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.orientation import oat_matrix
@@ -127,7 +127,7 @@ def cmd_ik(args: argparse.Namespace) -> int:
         start = check_joint_values(robot, parse_values(args.start, "--from"), "--from")
     if args.all:
         return _ik_all(robot, target, start, position_only=args.oat is None, as_json=args.json)
-    result = solve(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
+    result = inverse(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
     if not result.success:
         raise DhsimError(f"no solution for {shortened(robot.name)}: {result.reason}")
     if not all(math.isfinite(v) for v in (*result.q, result.residual)):

@@ -554,13 +554,13 @@ def test_a_name_the_terminal_cannot_encode_is_escaped_not_a_crash(tmp_path):
 
 def test_a_solution_that_lost_precision_is_refused_not_printed(capsys, monkeypatch):
     # numpy warnings are silenced in the CLI, so a non-finite answer must be caught
-    real_solve = cli_kinematics.solve
+    real_inverse = cli_kinematics.inverse
 
     def lossy(*args, **kwargs):
-        result = real_solve(*args, **kwargs)
+        result = real_inverse(*args, **kwargs)
         return dataclasses.replace(result, q=(math.nan,) * len(result.q))
 
-    monkeypatch.setattr(cli_kinematics, "solve", lossy)
+    monkeypatch.setattr(cli_kinematics, "inverse", lossy)
     code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0", "--json")
     assert_one_line(code, err)
     assert out == "" and "the solver lost precision" in err

@@ -143,3 +143,27 @@ async def test_play_faster_and_the_plot_at_the_time_played():
         assert "joints" in text and "tool speed" in text
         await pilot.press("escape")
         await until(pilot, lambda: app.screen is screen, "back")
+
+
+async def test_L_makes_R_record_linear_moves_and_the_title_says_so():
+    robot = replace(load_robot("puma560")[0], programs=())
+    app = DhsimApp(robot, animate=False)
+    async with app.run_test(size=(100, 30)) as pilot:
+        screen = await started(pilot)
+        panel = screen.query_one(ProgramPanel)
+        await pilot.press("R")
+        await pilot.pause()
+        assert "L: record linear moves" in status(app)
+        assert "R joint" in str(panel.border_title)
+        await pilot.press("L")
+        await pilot.pause()
+        assert "R records linear moves" in status(app)
+        assert "R linear" in str(panel.border_title)
+        await pilot.press("right", "right", "R")  # the jogging keys still jog
+        await pilot.pause()
+        steps = app.robot.program("program1").steps
+        assert [s.move for s in steps] == ["joint", "linear"]
+        assert np.allclose(steps[1].to, screen.q)
+        await pilot.press("L", "left", "R")
+        await pilot.pause()
+        assert [s.move for s in app.robot.program("program1").steps] == ["joint", "linear", "joint"]

@@ -126,6 +126,37 @@ def all_solutions(
         return _numerical(robot, target, first, position_only, family)
 
 
+def nearest_closed_form(
+    robot: Robot, target: np.ndarray, start: Sequence[float]
+) -> Solution | None:
+    """The closed-form solution within the limits nearest ``start`` (the
+    first of :func:`all_solutions`), or None when there is none (or the arm
+    has no closed form). Every branch is solved (a few microseconds) but
+    only the nearest is checked by forward kinematics, unless it needs the
+    numerical polish of a near-singular pose: then every one is."""
+    geometry = ik_analytic.detect(robot)
+    if geometry is None:
+        return None
+    target = np.asarray(target, dtype=float)
+    start = tuple(start)
+    judge = Judge(robot, target, False)
+    branches, _ = ik_analytic.solve(robot, geometry, target, start, judge.fits)
+    best = None
+    for q, config in branches:
+        nearest = judge.nearest(q, start)
+        if nearest is not None:
+            key = (judge.distance(nearest, start), nearest)
+            if best is None or key < best[0]:
+                best = (key, q, config)
+    if best is not None:
+        (_, nearest), q, config = best
+        position, orientation = judge.errors(q)
+        if position <= POLISH_ABOVE * judge.scale and orientation <= POLISH_ABOVE:
+            return Solution(nearest, config, position, orientation)
+    found = _analytic(robot, geometry, target, start).solutions
+    return found[0] if found else None
+
+
 def _distinct(judge: Judge, items: list, tol: float) -> list:
     """``items`` ((q, ...) tuples) without repeats modulo a turn, first kept
     (:meth:`Judge.same`, written out: this runs for every pair). The last

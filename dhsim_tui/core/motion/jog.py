@@ -14,7 +14,8 @@ import numpy as np
 from dhsim_tui.core.analysis.jacobian import controllable_rows, jacobian, normalised
 from dhsim_tui.core.analysis.workspace import length_scale, reach
 from dhsim_tui.core.ik import reasons as ik_reasons
-from dhsim_tui.core.ik.numerical import POSITION, IKResult, solve
+from dhsim_tui.core.ik.nearest import inverse
+from dhsim_tui.core.ik.numerical import POSITION, IKResult
 from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.model.orientation import rotx, roty, rotz
 from dhsim_tui.core.model.robot import Robot, mm_to_unit
@@ -166,7 +167,7 @@ def _cartesian_move(robot: Robot, q: tuple[float, ...], target: np.ndarray) -> C
     key = (robot, q, target.tobytes())
     if _last_refusal[0] == key:  # the same step again (a held key): the same answer, at once
         return _last_refusal[1]
-    result = solve(robot, target, q, max_iter=40, position_only=position_only)
+    result = inverse(robot, target, q, max_iter=40, position_only=position_only)
     if not result.success:
         move = CartesianMove(q, False, _why(robot, result, turning))
         _last_refusal[:] = [key, move]

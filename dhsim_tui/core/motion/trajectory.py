@@ -12,9 +12,11 @@ step each sample is in, its move, the joints and the tool's pose.
   target pose's tool point on a trapezoidal profile in path length (the
   step's speed, :data:`~dhsim_tui.core.motion.profiles.LINEAR_ACCELERATION_MM`)
   and turns it on the shortest rotation (a rotation vector scaled along the
-  path: the same as slerp). The joints come from the numerical IK at every
-  sample, seeded with the previous sample's joints, so the arm never changes
-  branch; at a rate below :data:`IK_RATE` it is solved at that rate in
+  path: the same as slerp). The joints come from IK at every sample, the
+  solution nearest the previous sample's joints
+  (:func:`dhsim_tui.core.ik.nearest.inverse`: the closed form where the arm
+  has one, else the numerical solver started there), so the arm never
+  changes branch; at a rate below :data:`IK_RATE` it is solved at that rate in
   between as well. When IK fails, or a joint would jump (a revolute joint
   more than :data:`~dhsim_tui.core.motion.jog.MAX_JOINT_JUMP_DEG` in one
   solve, a prismatic one more than :data:`JUMP_SHARE` of the reach), the
@@ -38,7 +40,7 @@ import numpy as np
 
 from dhsim_tui.core.analysis.jacobian import controllable_rows, manipulability
 from dhsim_tui.core.analysis.workspace import length_scale
-from dhsim_tui.core.ik.numerical import solve
+from dhsim_tui.core.ik.nearest import inverse
 from dhsim_tui.core.ik.reasons import amount
 from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.model.errors import DhsimError
@@ -245,7 +247,7 @@ class _Sampler:
         out = np.empty((len(times), robot.dof))
         previous = tuple(q)
         for i, target in enumerate(targets):
-            result = solve(
+            result = inverse(
                 robot, target, previous, max_iter=IK_ITERATIONS, position_only=self.position_only
             )
             failure = None

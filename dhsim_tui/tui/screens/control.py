@@ -102,6 +102,13 @@ TALL_FOR_BOTH = 32
 TALL_FOR_ALL_READOUTS = 44
 
 
+#: while a program plays, the joints' and the pose's numbers are shown every
+#: this many frames (15 a second): nobody reads them faster, and each frame
+#: then costs the terminal less, so a key pressed during playback is answered
+#: sooner (bench/latency.py --during-playback)
+PANELS_EVERY = 2
+
+
 class ControlScreen(Screen):
     """Joint stepping, home, poses, read-outs and the four views.
 
@@ -245,8 +252,10 @@ class ControlScreen(Screen):
         self.dexterity = dexterity(self.robot, jac=jacobian_from_frames(self.robot, frames))
         wire = build_wireframe(self.robot, frames, self._programs.trail)
         self._views.show(wire)
-        self._joints.show(self.q)
         self.warnings = wire.warnings
+        if self._programs.playing and self.redraws % PANELS_EVERY:
+            return  # playing: the numbers every other frame, the views every frame
+        self._joints.show(self.q)
         self._show_pose()
 
     def _show_pose(self) -> None:
@@ -682,6 +691,9 @@ class ControlScreen(Screen):
     def action_record(self) -> None:
         self._programs.record()
         self.add_class("-program")
+
+    def action_record_move(self) -> None:
+        self._programs.toggle_record_move()
 
     def action_play(self) -> None:
         self._programs.toggle()

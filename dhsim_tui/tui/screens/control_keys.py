@@ -41,6 +41,9 @@ PROGRAM = Keys("program", help="the program panel: its steps (again: back to the
 RECORD = Keys(
     "record step", help="record the current pose as the program's next step (a joint move)"
 )
+RECORD_MOVE = Keys(
+    legend=False, help="what R records: a joint move ⇄ a linear move (the tool in a line)"
+)
 PLAY = Keys("play/pause", help="play the program in the views, in real time; again: pause")
 EDIT = Keys("edit table", help="edit the robot's D-H table")
 HELP = Keys("help", help="this help")
@@ -83,6 +86,8 @@ CONTROL_BINDINGS = [
             tooltip="The program panel: select, change and play its steps", group=PROGRAM),
     Binding("R", "record", "Record", show=False, id="program.record",
             tooltip="Record the current pose as the program's next step", group=RECORD),
+    Binding("L", "record_move", "Record joint/linear", show=False, id="program.record_move",
+            tooltip="What R records: a joint move, or a linear move", group=RECORD_MOVE),
     Binding("space", "play", "Play", show=False, id="program.play",
             tooltip="Play the program from the start, or pause and go on", group=PLAY),
     Binding("e", "edit", "Edit", id="robot.edit", tooltip="Edit the robot's D-H table",

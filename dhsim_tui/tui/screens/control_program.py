@@ -75,6 +75,7 @@ class ProgramPlayer:
         self._timer: Timer | None = None
         self._from = (0.0, 0.0)  # (monotonic time, time played) when play last began
         self.speed = 1.0  # times real time
+        self.record_move = "joint"  # what R records: "joint" or "linear" (L)
         panel.show(self.program())
 
     @property
@@ -97,13 +98,24 @@ class ProgramPlayer:
 
     # -- changes ---------------------------------------------------------------------
     def record(self) -> None:
-        """The current pose as a joint move after the selected step."""
+        """The current pose as a joint (or, after ``L``, a linear) move after
+        the selected step."""
         program = self.program() or Program(self.name)
         at = self.panel.selected if program.steps else None
-        step = Step("joint", tuple(round(v, 6) for v in self.host.q))
-        done = f"recorded step {len(program.steps) + 1} of {program.name}"
+        step = Step(self.record_move, tuple(round(v, 6) for v in self.host.q))
+        other = "joint" if step.move == "linear" else "linear"
+        done = (
+            f"recorded step {len(program.steps) + 1} of {program.name}: a {step.move} move"
+            f" (L: record {other} moves)"
+        )
         if self._set(with_step(program, step, at), done) and program.steps:
             self.panel.selected = (at or 0) + 1
+
+    def toggle_record_move(self) -> None:
+        """L: R records linear moves from now on, or joint moves again."""
+        self.record_move = "linear" if self.record_move == "joint" else "joint"
+        self.panel.record_move = self.record_move
+        self.host.say(f"R records {self.record_move} moves from now on")
 
     def change(self, change: str, index: int) -> None:
         """The program panel's ``kind``, ``delete``, ``up``, ``down`` or ``undo``."""

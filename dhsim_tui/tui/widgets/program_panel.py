@@ -106,6 +106,8 @@ class ProgramPanel(TextPanel, can_focus=True):
     BINDINGS = BINDINGS
 
     selected: reactive[int] = reactive(0, init=False)
+    #: what R records, shown in the title: "joint" or "linear"
+    record_move: reactive[str] = reactive("joint", init=False)
 
     @dataclass
     class Changed(Message):
@@ -143,8 +145,16 @@ class ProgramPanel(TextPanel, can_focus=True):
         if count and self.selected >= count:
             self.set_reactive(ProgramPanel.selected, count - 1)
         self._shown = (program, playing_step, dict(marks or {}))
-        self.border_title = f"Program {program.name}" if program is not None else "Program"
+        self._title()
         self._render_now()
+
+    def _title(self) -> None:
+        program = self._shown[0]
+        name = f"Program {program.name}" if program is not None else "Program"
+        self.border_title = f"{name} · R {self.record_move}"
+
+    def watch_record_move(self) -> None:
+        self._title()
 
     def _render_now(self) -> None:
         program, playing_step, marks = self._shown
