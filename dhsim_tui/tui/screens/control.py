@@ -333,7 +333,9 @@ class ControlScreen(Screen):
                 return
             self.add_class("-program")  # shown first: a hidden panel takes no focus
             self._program_panel.focus()
-            self.say("program: R records a step, space plays, l joint/linear, delete, ctrl+z")
+            self.say(
+                "program: R records a step (L: linear ones), space plays, l joint/linear, delete"
+            )
             return
         if to == "cartesian":
             self.add_class("-cartesian")  # shown first: a hidden panel takes no focus
