@@ -17,6 +17,7 @@ import numpy as np
 from dhsim_tui.core.files.library import load_robot
 from dhsim_tui.core.ik.nearest import inverse
 from dhsim_tui.core.ik.reasons import angle, length
+from dhsim_tui.core.ik.solutions import all_solutions
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.orientation import oat_matrix
 from dhsim_tui.core.model.robot import LENGTH_DECIMALS, MAX_ABS, Robot
@@ -160,8 +161,6 @@ def cmd_ik(args: argparse.Namespace) -> int:
 
 def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) -> int:
     """``dhsim ik --all``: every solution, nearest to the start first."""
-    from dhsim_tui.core.ik.solutions import all_solutions  # only for --all: not loaded at start
-
     found = all_solutions(robot, target, start, position_only=position_only)
     if not found.solutions:
         raise DhsimError(f"no solution for {shortened(robot.name)}: {found.note}")

@@ -83,3 +83,22 @@ def test_out_of_reach_says_why():
     target[:3, 3] = (5000.0, 0.0, 0.0)
     result = inverse(robot, target, robot.home)
     assert not result.success and "reach" in result.reason
+
+
+def test_a_continuation_never_takes_another_branch():
+    # Th5 half a degree short of its limit, the tool tilted on: only another
+    # elbow branch reaches that pose, so a jog (max_change) is told why not
+    robot, _ = load_robot("puma560")
+    q = (0.0, 45.0, -135.0, 0.0, 99.5, 0.0)
+    pose = reference_frames(robot, q)[-1]
+    tilt = np.eye(4)
+    c, s = np.cos(np.radians(-10.0)), np.sin(np.radians(-10.0))
+    tilt[:3, :3] = [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+    target = pose @ tilt
+    anywhere = inverse(robot, target, q)
+    assert anywhere.success
+    reaches(robot, target, anywhere.q)
+    assert np.abs(np.subtract(anywhere.q, q)).max() > 30.0  # another branch
+    limits = [30.0] * robot.dof
+    local = inverse(robot, target, q, max_change=limits)
+    assert not local.success and "Th5 is at its limit" in local.reason

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.kinematics import _constant_lines, _joint_lines, _start, _step
 from dhsim_tui.core.model.robot import Robot
@@ -55,18 +57,30 @@ def _first_axis(robot: Robot) -> tuple[float, ...]:
     return tuple(state[6:12])
 
 
-def jacobian_source(robot: Robot, *, normalise: bool = False, with_state: bool = False) -> str:
-    """The Python source of the robot's compiled Jacobian ``f(q)``.
+def jacobian_parts(
+    robot: Robot, *, normalise: bool = False, tool_rotation: bool = True
+) -> tuple[list, list, list]:
+    """The pieces of the compiled Jacobian, for code that puts other lines
+    between them (the numerical IK's compiled descent):
 
-    It returns the 6×n Jacobian as a flat row-major list; ``with_state`` also
-    returns the end effector's 12-float state (as ``Kinematics.state``) first.
-    ``normalise`` gives :func:`normalised`'s dimensionless Jacobian instead
-    (linear rows per reach, prismatic columns per reach)."""
+    * the chain's lines: from ``q0 .. q{n-1}`` (the joint values) they set the
+      end effector's 12-float state (the names of ``Kinematics.state``:
+      ``x0 .. z2`` its axes, ``p0 p1 p2`` its origin), keeping each joint's
+      axis and origin as they pass;
+    * the column lines, run after them: they compute the linear entries;
+    * ``columns[c][r]``: entry (r, c) of the Jacobian, a name the lines set or
+      a constant (``"0.0"``, ``"1.0"``, ...).
+
+    ``normalise`` gives :func:`normalised`'s dimensionless Jacobian (linear
+    rows per reach, prismatic columns per reach). Without ``tool_rotation``
+    the state's axes are the flange's (the tool's offset is in its origin):
+    for code that turns its target by the tool's rotation instead, once.
+    The lines also use the names
+    ``c``, ``s``, ``l0 l1 l2``, ``u{i}*``, ``o{i}*`` and ``c{i}_{r}``."""
     n = robot.dof
     standard = robot.convention == "standard"
     tool = None if robot.tool.is_identity else robot.kinematics.tool
     body = [f"{_STATE} = {', '.join(repr(float(v)) for v in _start(robot))}"]
-    body.append(f"{', '.join(f'q{i}' for i in range(n))}, = q")
     axes: list[tuple] = []
 
     def capture(i: int) -> tuple:
@@ -82,33 +96,52 @@ def jacobian_source(robot: Robot, *, normalise: bool = False, with_state: bool =
         if not standard:
             axes.append(capture(i))
     if tool is not None:
+        if not tool_rotation:
+            tool = tool.copy()
+            tool[:3, :3] = np.eye(3)
         body += _constant_lines(tool)
     inverse = 1.0 / length_scale(robot) if normalise else 1.0
     columns = []
+    lines = []
     for i, joint in enumerate(robot.joints):
         ax, ay, az, ox, oy, oz = axes[i]
         if not joint.is_revolute:  # (z, 0): per unit length, or per reach (× reach / reach)
             columns.append([_value(ax), _value(ay), _value(az), "0.0", "0.0", "0.0"])
             continue
+        linear = [
+            _difference(_term(ay, "l2"), _term(az, "l1")),
+            _difference(_term(az, "l0"), _term(ax, "l2")),
+            _difference(_term(ax, "l1"), _term(ay, "l0")),
+        ]
         for k, (p, o) in enumerate(zip(("p0", "p1", "p2"), (ox, oy, oz), strict=True)):
+            if not any(f"l{k}" in term for term in linear):
+                continue  # a constant axis with no component here: lever unused
             lever = f"{p} - {_value(o)}" if o != 0.0 else p
             if inverse != 1.0:
                 lever = f"({lever})*{inverse!r}"
-            body.append(f"l{k} = {lever}")
-        columns.append(
-            [
-                _difference(_term(ay, "l2"), _term(az, "l1")),
-                _difference(_term(az, "l0"), _term(ax, "l2")),
-                _difference(_term(ax, "l1"), _term(ay, "l0")),
-                _value(ax),
-                _value(ay),
-                _value(az),
-            ]
-        )
+            lines.append(f"l{k} = {lever}")
         # the lever's names are reused: keep this column's values before the next
-        names = [f"c{i}_{r}" for r in range(3)]
-        body.append(f"{', '.join(names)} = {', '.join(columns[-1][:3])}")
-        columns[-1][:3] = names
+        # (constant entries stay constants, for code that folds them)
+        named = [r for r in range(3) if linear[r] != "0.0"]
+        if named:
+            names = [f"c{i}_{r}" for r in named]
+            lines.append(f"{', '.join(names)} = {', '.join(linear[r] for r in named)}")
+            for r in named:
+                linear[r] = f"c{i}_{r}"
+        columns.append([*linear, _value(ax), _value(ay), _value(az)])
+    return body, lines, columns
+
+
+def jacobian_source(robot: Robot, *, normalise: bool = False, with_state: bool = False) -> str:
+    """The Python source of the robot's compiled Jacobian ``f(q)``.
+
+    It returns the 6×n Jacobian as a flat row-major list; ``with_state`` also
+    returns the end effector's 12-float state (as ``Kinematics.state``) first.
+    ``normalise`` gives :func:`normalised`'s dimensionless Jacobian instead
+    (linear rows per reach, prismatic columns per reach)."""
+    n = robot.dof
+    chain, lines, columns = jacobian_parts(robot, normalise=normalise)
+    body = [chain[0], f"{', '.join(f'q{i}' for i in range(n))}, = q", *chain[1:], *lines]
     flat = ", ".join(columns[c][r] for r in range(6) for c in range(n))
     body.append(f"return ({_STATE}), [{flat}]" if with_state else f"return [{flat}]")
     return "def jacobian(q):\n" + "".join(f"    {line}\n" for line in body)

@@ -111,14 +111,19 @@ def _ascend(robot: Robot, q: np.ndarray, origin: np.ndarray, scale: float) -> fl
     return best
 
 
+#: arms with at most this many joints also try every corner of their limits
+#: box (2**n joint vectors) as starts
+CORNER_JOINTS = 8
+
+
 @functools.lru_cache(maxsize=64)
 def arm_reach(robot: Robot) -> float:
     """The arm's reach: the largest distance of the tool from frame 0's
     origin within the joint limits (robot units).
 
     Found the way a person would: the farthest of ``REACH_SAMPLES`` joint
-    vectors drawn within the limits (and the corners of every revolute
-    joint's range, where a stop often decides) are each pushed further by
+    vectors drawn within the limits (and every corner of the limits box, for
+    arms of up to :data:`CORNER_JOINTS` joints: a stop often decides) are each pushed further by
     local ascent, which converges on the maximum near it. The same arm in
     either D-H convention gives the same reach; a sampled workspace never
     exceeds it. Repeatable: the samples are seeded."""
@@ -126,6 +131,9 @@ def arm_reach(robot: Robot) -> float:
     low, high = np.array(robot.lower, dtype=float), np.array(robot.upper, dtype=float)
     rng = np.random.default_rng(0)
     qs = np.vstack([rng.uniform(low, high, size=(REACH_SAMPLES, robot.dof)), low, high])
+    if robot.dof <= CORNER_JOINTS:  # every corner of the limits box, where stops decide
+        corners = np.meshgrid(*zip(low, high, strict=True), indexing="ij")
+        qs = np.vstack([qs, np.stack(corners, axis=-1).reshape(-1, robot.dof)])
     qs = np.vstack([qs, np.array(robot.home, dtype=float)])
     distances = _distances(robot, qs, origin)
     scale = max(reach(robot), 1e-12)

@@ -42,17 +42,29 @@ def inverse(
     max_iter: int = 100,
     restarts: int = 0,
     seed: int = 0,
+    max_change: Sequence[float] | None = None,
 ) -> IKResult:
     """Joint values that put the end effector at ``target`` (a 4×4 world
     pose; its position alone when ``position_only``), nearest ``start``
     (home when None): the closed form's nearest solution where the arm has
     one, else :func:`~dhsim_tui.core.ik.numerical.solve` with these
     arguments (and when no closed-form solution is within the limits, so
-    that the failure says why)."""
+    that the failure says why).
+
+    ``max_change`` (robot units, per joint): a jog or a sampled line asks
+    for a continuation; a closed-form answer that moves a joint further
+    from ``start`` is another branch, and the numerical solver started at
+    ``start`` answers instead: it follows the arm's own branch as far as it
+    goes, and says what stops it there (a joint's limit, a singularity)."""
     first = tuple(robot.home if start is None else start)
     if not position_only:
+
         with np.errstate(all="ignore"):
             best = nearest_closed_form(robot, target, first)
+        if best is not None and max_change is not None:
+            changes = zip(best.q, first, max_change, strict=True)
+            if any(abs(a - b) > most for a, b, most in changes):
+                best = None  # another branch: not a continuation
         if best is not None:
             residual = max(best.residual / length_scale(robot), best.orientation_error)
             return IKResult(

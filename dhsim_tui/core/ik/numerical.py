@@ -3,20 +3,24 @@
 Works on the dimensionless Jacobian (lengths per reach) so one tolerance and
 one damping suit any arm and unit. Joint limits are respected by clamping
 every step. Arms with fewer than six joints solve for the directions they can
-move (a SCARA: x, y, z and the turn about z). Restarts from random joint
-vectors (seeded: the same call gives the same answer) when the first start
-fails; the result says plainly whether it reached the target, and if not,
-which part failed (position or orientation) and why (see ik_reasons).
+move (a SCARA: x, y, z and the turn about z). With restarts, when the first
+start fails, the solver tries the configurations of a seeded table whose
+poses lie nearest the target, then random joint vectors (seeded: the same
+call gives the same answer); the result says plainly whether it reached the
+target, and if not, which part failed (position or orientation) and why (see
+ik_reasons).
 
-Speed: an iteration is one call of the robot's compiled kernel (the pose and
-the normalised Jacobian in one pass, jacobian.kernel) and one written-out
-Cholesky solve (cholesky.damped_solver), in plain Python floats; numpy's
-per-call overhead would be most of the cost at this size. A random start that
-stalls gives up after a few iterations, and most random starts ignore the
-limits until they have found a solution
-(:func:`~dhsim_tui.core.ik.numerical_descent._free_start`), so a solve
-with restarts tries many starts cheaply: no reachable pose is called
-unreachable for want of looking (tests/cli/test_ik_success.py).
+Speed: a whole descent is one function compiled for the robot
+(:mod:`dhsim_tui.core.ik.step_codegen`): pose, error, normalised Jacobian,
+a written-out Cholesky solve of the smaller normal matrix and the clamped
+step, in plain Python float locals (numpy's per-call overhead would be most
+of the cost at this size), about 9 µs an iteration for a Panda. With
+restarts, each start gives up early when it is not getting close (a
+checkpoint) or stalls, the table's starts (numerical_starts) usually need
+a few iterations, and most random starts ignore the limits until they have
+found a solution (:func:`~dhsim_tui.core.ik.numerical_descent._free_start`):
+no reachable pose is called unreachable for want of looking
+(tests/cli/test_ik_success.py). bench/ik_speed.py measures it.
 
 The target's errors and Jacobian in internal units are
 :mod:`dhsim_tui.core.ik.numerical_problem`'s, the descents
@@ -34,6 +38,7 @@ import numpy as np
 from dhsim_tui.core.ik import reasons as ik_reasons
 from dhsim_tui.core.ik.numerical_descent import POLISH_BELOW, _descend, _free_start
 from dhsim_tui.core.ik.numerical_problem import ORIENTATION_TOL, _Problem
+from dhsim_tui.core.ik.numerical_starts import nearest_starts
 from dhsim_tui.core.ik.rotation import rotation_error as rotation_error  # its old home
 from dhsim_tui.core.model.kinematics import robot_base
 from dhsim_tui.core.model.robot import Robot
@@ -52,6 +57,23 @@ STARTS_PER_RESTART = 6
 #: 15% against 10% on the hardest targets) in fewer iterations; the clamped
 #: ones keep the search honest on arms where a free descent wanders off
 FREE_EVERY = 4
+#: with restarts, each start's descent has a budget and a checkpoint: there
+#: it gives up unless its error (reach fractions, radians) is below a limit.
+#: A descent that succeeds is close by then (from home, a Panda or a Puma
+#: takes 8 iterations for the median target, from the table's nearest 5),
+#: one that fails wanders on for long; cut off early, the next start comes
+#: sooner. Tuned on two sets of random targets per arm (bench/ik_speed.py's
+#: and another): for a Panda from home, the 95th percentile fell from 45
+#: iterations to about 27, the median stayed 9
+FIRST_ITER = 12
+FIRST_CHECK = (8, 0.04**2)
+#: then the table's starts nearest the target (numerical_starts), from
+#: TABLE_FROM restarts on (fewer, as the every-solution search asks, keep to
+#: random starts for their variety)
+TABLE_STARTS = 16
+TABLE_ITER = 12
+TABLE_CHECK = (5, 0.02**2)
+TABLE_FROM = 2
 #: random starts that tell "singular here" (reachable from elsewhere) from "out of reach"
 PROBES = 6
 
@@ -98,32 +120,54 @@ def solve(
 
     The first descent starts at ``start`` (home when None) and, without
     restarts, runs its ``max_iter`` iterations: the answer is the solution
-    next to the start (a jog never jumps to another branch). Each restart is
-    a round of STARTS_PER_RESTART seeded random starts, each of which gives
-    up when it stalls."""
-    with np.errstate(all="ignore"):  # degenerate arms: guarded below, never printed
-        return _solve(robot, target, start, position_only, max_iter, restarts, seed)
+    next to the start (a jog never jumps to another branch). With restarts,
+    the first descent gets FIRST_ITER iterations (giving up at its
+    checkpoint if far off), then the TABLE_STARTS table configurations
+    nearest the target TABLE_ITER each, then each restart is a round of
+    STARTS_PER_RESTART seeded random starts; every one gives up when it
+    stalls, and if none succeeds the closest is finished."""
+    return _solve(robot, target, start, position_only, max_iter, restarts, seed)
+
+
+def _starts(problem: _Problem, x0: list[float], max_iter: int, restarts: int, seed: int):
+    """A solve's starts with restarts, in order, each as (x, free, iterations
+    allowed, checkpoint, squared error allowed there): ``x0``, the table's
+    nearest the target, then the seeded random ones."""
+    yield (x0, False, min(max_iter, FIRST_ITER), *FIRST_CHECK)
+    if restarts >= TABLE_FROM:
+        for x in nearest_starts(problem, TABLE_STARTS):
+            yield (x, False, min(max_iter, TABLE_ITER), *TABLE_CHECK)
+    rng = np.random.default_rng(seed)
+    for attempt in range(1, restarts * STARTS_PER_RESTART + 1):
+        with np.errstate(all="ignore"):  # limits too wide to compute with: not finite
+            x = rng.uniform(problem.low, problem.high).tolist()
+        yield x, attempt % FREE_EVERY != 0, max_iter, -1, 0.0  # most free of the limits
 
 
 def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKResult:
     problem = _Problem(robot, np.asarray(target, dtype=float), position_only)
-    first = np.array(start if start is not None else robot.home, dtype=float)
-    x0 = np.clip(first * problem.to_internal, problem.low, problem.high)
-    rng = None
+    setup = problem.setup
+    first = [float(v) for v in (start if start is not None else robot.home)]
+    bounds = zip(first, setup.to_internal_list, setup.low_list, setup.high_list, strict=True)
+    x0 = [min(max(v * k, lo), hi) for v, k, lo, hi in bounds]
     best = None
     total = 0
-    for attempt in range(restarts * STARTS_PER_RESTART + 1):
-        if attempt:
-            rng = rng or np.random.default_rng(seed)
-            x0 = rng.uniform(problem.low, problem.high)
-        if attempt % FREE_EVERY:  # most random starts ignore the limits until done
-            found, iterations = _free_start(problem, x0, max_iter)
+    give_up = restarts > 0
+    if give_up:
+        starts = _starts(problem, x0, max_iter, restarts, seed)
+    else:
+        starts = ((x0, False, max_iter, -1, 0.0),)
+    for x_start, free, budget, checkpoint, limit in starts:
+        if free:
+            found, iterations = _free_start(problem, x_start, budget)
             total += iterations
             if found is None:
                 continue
             x, error, iterations, ok = found
         else:
-            x, error, iterations, ok = _descend(problem, x0, max_iter, give_up=restarts > 0)
+            x, error, iterations, ok = _descend(
+                problem, x_start, budget, give_up=give_up, checkpoint=checkpoint, limit=limit
+            )
             total += iterations
         score = problem.score(error)
         if not math.isfinite(score):
@@ -135,7 +179,7 @@ def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKR
     if best is None:  # nothing finite: an arm too degenerate to compute with
         return IKResult(
             False,
-            tuple(first.tolist()),
+            tuple(first),
             math.inf,
             math.inf,
             total,
@@ -160,21 +204,23 @@ def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKR
         return IKResult(
             True, problem.user(x), position_error, orientation_error, total, "", residual
         )
-    return _failure(problem, x, error, total, max_iter, probe=restarts == 0, seed=seed)
+    with np.errstate(all="ignore"):  # degenerate arms: guarded, never printed
+        return _failure(problem, x, error, total, max_iter, probe=restarts == 0, seed=seed)
 
 
 def _failure(problem: _Problem, x, error, total: int, max_iter: int, probe: bool, seed: int):
     """The closest configuration found, which part failed and why."""
     position_error, _ = problem.errors(error)
+    x = np.array(x, dtype=float)
     if not problem.position_reached(position_error) and problem.rows[3:].any():
         # the whole pose failed: is the position reachable when the orientation gives way?
         first = problem.view(False)
-        x_first, error_first = x, error
+        x_first, error_first = x.tolist(), error
         for weight in POSITION_FIRST:
-            first.weight[:3] = weight
+            first.weight = np.array([weight, weight, weight, 1.0, 1.0, 1.0])
             x_first, error_first, iterations, _ = _descend(first, x_first, max_iter)
             total += iterations
-        x, error, problem = x_first, error_first, first  # the closest position
+        x, error, problem = np.array(x_first), error_first, first  # the closest position
     position_error, orientation_error = problem.errors(error)
     failed = ORIENTATION if problem.position_reached(position_error) else POSITION
     judge = problem.view(True) if failed == POSITION and not problem.position_only else problem
@@ -242,4 +288,4 @@ def _reachable(problem: _Problem, x: np.ndarray, max_iter: int, seed: int) -> bo
     span = problem.high - problem.low
     starts = [problem.limit(x + rng.normal(0.0, 0.05, len(x)) * np.minimum(span, 1.0))]
     starts += [rng.uniform(problem.low, problem.high) for _ in range(PROBES)]
-    return any(_descend(problem, start, max_iter)[3] for start in starts)
+    return any(_descend(problem, start.tolist(), max_iter)[3] for start in starts)

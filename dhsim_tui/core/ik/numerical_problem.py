@@ -8,23 +8,27 @@ tolerances a solution must meet.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
 from dhsim_tui.core.analysis.jacobian import (
     controllable_rows,
     jacobian_from_frames,
-    kernel,
     task_rank,
 )
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.ik.rotation import rotation_error
+from dhsim_tui.core.ik.step_codegen import compile_to_user
 from dhsim_tui.core.model.robot import Robot
 
 #: position tolerance as a fraction of the reach, and orientation tolerance (rad)
 POSITION_TOL = 5e-7
 ORIENTATION_TOL = 5e-7
 _DEG = math.pi / 180.0
+#: the row weights of an unweighted problem (shared, read only)
+UNWEIGHTED = np.ones(6)
+UNWEIGHTED.flags.writeable = False
 
 
 class _Setup:
@@ -43,11 +47,25 @@ class _Setup:
         self.rows = {False: full, True: position}
         rank = task_rank(robot)
         self.rank = {k: min(robot.dof, int(v.sum()), rank) for k, v in self.rows.items()}
-        self.kernel = kernel(robot)
         self.to_user = (1.0 / self.to_internal).tolist()
         self.low_list = self.low.tolist()
         self.high_list = self.high.tolist()
         self.revolute_list = self.revolute.tolist()
+        self.to_internal_list = self.to_internal.tolist()
+        self.lower = list(robot.lower)
+        self.upper = list(robot.upper)
+        #: the rows solved for, by index (position_only -> rows)
+        self.picked = {k: [r for r in range(6) if v[r]] for k, v in self.rows.items()}
+        #: the compiled descents (numerical_descent), by (position_only, weights)
+        self.descents: dict = {}
+        #: the keys of descents compiled unfolded, and how many were asked for
+        self.unfolded: set = set()
+        self.descent_calls = 0
+        #: the seeded table of starts (numerical_starts), built on first use
+        self.table = None
+        self.to_user_tuple = compile_to_user(
+            robot.name, self.to_internal_list, self.lower, self.upper
+        )
         self.dof = robot.dof
         for shared in (self.revolute, self.to_internal, self.low, self.high, full, position):
             shared.flags.writeable = False  # every problem of this robot reads them
@@ -56,7 +74,8 @@ class _Setup:
 def _setup(robot: Robot) -> _Setup:
     cached = robot.__dict__.get("_ik_setup")
     if cached is None:
-        cached = _Setup(robot)
+        with np.errstate(all="ignore"):  # an arm too small to compute with: judged later
+            cached = _Setup(robot)
         object.__setattr__(robot, "_ik_setup", cached)
     return cached
 
@@ -76,14 +95,16 @@ class _Problem:
         self.low = setup.low
         self.high = setup.high
         self.rows = setup.rows[position_only]
+        self.picked = setup.picked[position_only]
         self.target = target
         self.position_only = position_only
-        #: row weights of the least-squares problem (all 1 but for POSITION_FIRST)
-        self.weight = np.ones(6)
+        #: row weights of the least-squares problem (all 1 but for POSITION_FIRST:
+        #: a new array then, this one is shared)
+        self.weight = UNWEIGHTED
         self.rank = setup.rank[position_only]
-        # the target as plain floats for the fast loop: position per reach, rotation rows
-        self.goal = target[:3, 3].tolist()
-        self.goal_rotation = target[:3, :3].ravel().tolist()
+        # the target as plain floats for the fast loop: position, then the rotation's rows
+        rows = target.tolist()
+        self.goal = [rows[0][3], rows[1][3], rows[2][3], *rows[0][:3], *rows[1][:3], *rows[2][:3]]
 
     def limit(self, x: np.ndarray) -> np.ndarray:
         """Into the joint limits: a revolute joint past one limit takes the same
@@ -94,12 +115,12 @@ class _Problem:
         x = np.where(over, x - turn, np.where(under, x + turn, x))
         return np.clip(x, self.low, self.high)
 
-    def user(self, x: np.ndarray) -> tuple[float, ...]:
+    def user(self, x: Sequence[float]) -> tuple[float, ...]:
         """Joint values in the robot's units, within its limits (the way back
         from radians or reach fractions may round a limit a digit past it)."""
-        values = (x / self.to_internal).tolist()
-        bounds = zip(values, self.robot.lower, self.robot.upper, strict=True)
-        return tuple(min(max(v, lo), hi) for v, lo, hi in bounds)
+        if isinstance(x, np.ndarray):
+            x = x.tolist()
+        return self.setup.to_user_tuple(x)
 
     def evaluate(self, x: np.ndarray):
         frames = self.kin.frames(self.user(x))
@@ -121,9 +142,9 @@ class _Problem:
         w = self.weight[self.rows]
         return self.full_jacobian(frames)[self.rows] * w[:, None], error[self.rows] * w
 
-    def score(self, error: np.ndarray) -> float:
+    def score(self, error: Sequence[float]) -> float:
         """The size of the error in the rows solved for (unweighted)."""
-        return math.sqrt(sum(v * v for v, r in zip(error.tolist(), self.rows, strict=True) if r))
+        return math.sqrt(sum(error[r] * error[r] for r in self.picked))
 
     def converged(self, error: np.ndarray) -> bool:
         return (
@@ -131,13 +152,13 @@ class _Problem:
             and np.linalg.norm(error[3:][self.rows[3:]]) <= ORIENTATION_TOL
         )
 
-    def errors(self, error: np.ndarray) -> tuple[float, float]:
+    def errors(self, error: Sequence[float]) -> tuple[float, float]:
         """Position error (robot units) and orientation error (rad), judged on
         every requested direction, including those the arm cannot move: a
         planar arm asked for a point off its plane has not reached it."""
-        e = error.tolist()
-        position = math.hypot(*e[:3]) * self.scale
-        return position, 0.0 if self.position_only else math.hypot(*e[3:])
+        e0, e1, e2, e3, e4, e5 = error
+        position = math.hypot(e0, e1, e2) * self.scale
+        return position, 0.0 if self.position_only else math.hypot(e3, e4, e5)
 
     def position_reached(self, position_error: float) -> bool:
         return position_error <= POSITION_TOL * self.scale * 2

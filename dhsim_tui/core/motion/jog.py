@@ -167,7 +167,14 @@ def _cartesian_move(robot: Robot, q: tuple[float, ...], target: np.ndarray) -> C
     key = (robot, q, target.tobytes())
     if _last_refusal[0] == key:  # the same step again (a held key): the same answer, at once
         return _last_refusal[1]
-    result = inverse(robot, target, q, max_iter=40, position_only=position_only)
+    result = inverse(
+        robot,
+        target,
+        q,
+        max_iter=40,
+        position_only=position_only,
+        max_change=[MAX_JOINT_JUMP_DEG if j.is_revolute else math.inf for j in robot.joints],
+    )
     if not result.success:
         move = CartesianMove(q, False, _why(robot, result, turning))
         _last_refusal[:] = [key, move]

@@ -246,9 +246,15 @@ class _Sampler:
         robot = self.robot
         out = np.empty((len(times), robot.dof))
         previous = tuple(q)
+        jump = self.jump.tolist()
         for i, target in enumerate(targets):
             result = inverse(
-                robot, target, previous, max_iter=IK_ITERATIONS, position_only=self.position_only
+                robot,
+                target,
+                previous,
+                max_iter=IK_ITERATIONS,
+                position_only=self.position_only,
+                max_change=jump,
             )
             failure = None
             if not result.success:
