@@ -7,12 +7,14 @@ unit length. Standard D-H joint i moves about frame i−1's z; modified D-H
 joint i about frame i's own z.
 
 Like forward kinematics (see kinematics.py), the Jacobian is compiled per
-robot into one straight-line Python function
-(:mod:`dhsim_tui.core.analysis.jacobian_codegen`). Until a robot has asked
-for it :data:`COMPILE_AFTER` times it is read off the frames instead
-(:func:`jacobian_from_frames`, the same operations, so the same numbers),
-which spares the editor a compile per edit. The manipulability's written-out
-Cholesky factorisation is in :mod:`dhsim_tui.core.analysis.cholesky`.
+robot into one straight-line Python function: the solvers' :func:`kernel` by
+:mod:`dhsim_tui.core.analysis.jacobian_codegen`, :func:`jacobian`'s by the
+chain's own writer (:func:`_compile_plain`: the codegen's operations, so the
+same numbers, packed straight into an array). Until a robot has asked for
+it :data:`COMPILE_AFTER` times it is read off the frames instead
+(:func:`jacobian_from_frames`, the same operations again), which spares the
+editor a compile per edit. The manipulability's written-out Cholesky
+factorisation is in :mod:`dhsim_tui.core.analysis.cholesky`.
 """
 
 from __future__ import annotations
@@ -26,24 +28,44 @@ from dhsim_tui.core.analysis.cholesky import root_gram_det
 from dhsim_tui.core.analysis.jacobian_codegen import compile_jacobian
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.kinematics import COMPILE_AFTER
-from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.model.kinematics import COMPILE_AFTER, _floats, _start
+from dhsim_tui.core.model.kinematics_batch import check_out
+from dhsim_tui.core.model.kinematics_codegen import (
+    ChainWriter,
+    Term,
+    Value,
+    negated,
+    packer,
+    product,
+    signed,
+    text,
+    total,
+)
+from dhsim_tui.core.model.robot import Joint, Robot
 
+_F64 = np.dtype(np.float64)
+_ndarray = np.ndarray
+_empty = np.empty
 #: the arm counts as singular when its normalised manipulability drops below this
 SINGULAR_THRESHOLD = 1e-3
 #: warn from this value on
 NEAR_SINGULAR = 0.02
 
 
-def jacobian_from_frames(robot: Robot, frames: np.ndarray) -> np.ndarray:
-    """6×n Jacobian from Kinematics.frames(q) (frames 0..n and the tool)."""
+def jacobian_from_frames(
+    robot: Robot, frames: np.ndarray, out: np.ndarray | None = None
+) -> np.ndarray:
+    """6×n Jacobian from Kinematics.frames(q) (frames 0..n and the tool), in
+    ``out`` (a float64 6×n array) when given."""
     n = robot.dof
     offset = 0 if robot.convention == "standard" else 1
     axes = frames[offset : offset + n, :3, 2]  # (n, 3) joint axes in world
     origins = frames[offset : offset + n, :3, 3]
     lever = frames[-1, :3, 3] - origins
     revolute = np.array([j.is_revolute for j in robot.joints])
-    jac = np.zeros((6, n))
+    if out is not None:
+        check_out(out, (6, n))
+    jac = np.zeros((6, n)) if out is None else out
     # axes × lever, written out (np.cross costs more than the rest together)
     ax, ay, az = axes.T
     lx, ly, lz = lever.T
@@ -60,10 +82,11 @@ def jacobian_from_frames(robot: Robot, frames: np.ndarray) -> np.ndarray:
 class _Compiled:
     """A robot's compiled Jacobians, built on demand, and how often it was asked."""
 
-    __slots__ = ("calls", "kernel", "measure", "plain")
+    __slots__ = ("calls", "kernel", "measure", "plain", "shape")
 
-    def __init__(self) -> None:
+    def __init__(self, dof: int) -> None:
         self.calls = 0
+        self.shape = (6, dof)
         self.plain: Callable | None = None
         self.kernel: Callable | None = None
         self.measure: tuple | None = None
@@ -72,9 +95,63 @@ class _Compiled:
 def _compiled(robot: Robot) -> _Compiled:
     cached = robot.__dict__.get("_jacobian_compiled")
     if cached is None:
-        cached = _Compiled()
+        cached = _Compiled(robot.dof)
         object.__setattr__(robot, "_jacobian_compiled", cached)
     return cached
+
+
+def _compile_plain(robot: Robot) -> Callable:
+    """``f(q, o)``: the world Jacobian packed into ``o`` (a C-contiguous float64
+    6×n array), written by the chain's :class:`ChainWriter` with the operations
+    of jacobian_codegen's plain Jacobian, so the same numbers, but no copies,
+    and nothing the Jacobian does not need (often the last joint's turn)."""
+    tool = None if robot.tool.is_identity else robot.kinematics.tool
+    writer = ChainWriter(robot, tool, _start(robot))
+    standard = robot.convention == "standard"
+    axes = []  # each joint's axis and a point on it: z and origin of frame i-1 (or i)
+    for i in range(robot.dof):
+        if standard:
+            axes.append([writer.state[name] for name in ("z0", "z1", "z2", "p0", "p1", "p2")])
+        writer.joint(i)
+        if not standard:
+            axes.append([writer.state[name] for name in ("z0", "z1", "z2", "p0", "p1", "p2")])
+    writer.tool()
+    end = [writer.state[name] for name in ("p0", "p1", "p2")]
+    columns = [_column(writer, joint, axes[i], end, i == 0) for i, joint in enumerate(robot.joints)]
+    flat = ", ".join(column[row] for row in range(6) for column in columns)
+    return writer.compile([f"_pack(o, 0, {flat})"], {"_pack": packer(6 * robot.dof)})
+
+
+def _column(
+    writer: ChainWriter, joint: Joint, axis: list[Value], end: list[Value], first: bool
+) -> list[str]:
+    """A joint's column: (z, 0) for a prismatic joint, (z × (p - o), z) for a
+    revolute one. Joint 1's axis and origin are constants: as jacobian_codegen
+    does, a zero origin makes no difference and a zero or unit term of the
+    cross product is left out or not multiplied."""
+    z = axis[:3]
+    if not joint.is_revolute:
+        return [*(text(v) for v in z), "0.0", "0.0", "0.0"]
+    lever = [
+        p if first and o == 0.0 else writer.bind(total(signed(p), negated(signed(o))))
+        for p, o in zip(end, axis[3:], strict=True)
+    ]
+
+    def term(c: Value, value: Value) -> Term | None:
+        return None if first and c == 0.0 else product(c, value)  # (±1: no product)
+
+    def difference(a: Term | None, b: Term | None) -> Term:
+        if a is None or b is None:
+            return 0.0 if a is None and b is None else a if b is None else negated(b)
+        return total(a, negated(b))
+
+    (ax, ay, az), (lx, ly, lz) = z, lever
+    cross = [
+        difference(term(ay, lz), term(az, ly)),
+        difference(term(az, lx), term(ax, lz)),
+        difference(term(ax, ly), term(ay, lx)),
+    ]
+    return [*(text(writer.bind(t)) for t in cross), *(text(v) for v in z)]
 
 
 def kernel(robot: Robot) -> Callable:
@@ -90,19 +167,34 @@ def _bad_q(robot: Robot, exc: Exception) -> DhsimError:
     return DhsimError(f"expected {robot.dof} joint values for {robot.name!r}: {exc}")
 
 
-def jacobian(robot: Robot, q: Sequence[float]) -> np.ndarray:
-    """The world-frame geometric Jacobian at joint values q (deg / robot units)."""
-    cached = _compiled(robot)
-    if cached.plain is None:
+def jacobian(robot: Robot, q: Sequence[float], out: np.ndarray | None = None) -> np.ndarray:
+    """The world-frame geometric Jacobian at joint values q (deg / robot units),
+    6×n, in ``out`` (a float64 6×n array, returned) when given."""
+    try:
+        cached = robot._jacobian_compiled
+    except AttributeError:
+        cached = _compiled(robot)
+    if q.__class__ is _ndarray:
+        q = _floats(q)
+    if out is None:
+        out = _empty(cached.shape)
+    elif out.__class__ is not _ndarray or out.shape != cached.shape or out.dtype is not _F64:
+        check_out(out, cached.shape)
+    plain = cached.plain
+    if plain is None:
         cached.calls += 1
         if cached.calls < COMPILE_AFTER:
-            return jacobian_from_frames(robot, robot.kinematics.frames(q))
-        cached.plain = compile_jacobian(robot)
+            return jacobian_from_frames(robot, robot.kinematics.frames(q), out)
+        plain = cached.plain = _compile_plain(robot)
     try:
-        flat = cached.plain(q)
-    except (ValueError, TypeError) as exc:
-        raise _bad_q(robot, exc) from None
-    return np.fromiter(flat, float, 6 * robot.dof).reshape(6, robot.dof)
+        plain(q, out)
+    except (ValueError, TypeError) as exc:  # (an out not C-contiguous: through a new one)
+        if not out.flags.writeable:
+            raise DhsimError("out must be a writable array") from None
+        if out.flags.c_contiguous:
+            raise _bad_q(robot, exc) from None
+        out[...] = jacobian(robot, q)
+    return out
 
 
 def task_rank(robot: Robot) -> int:

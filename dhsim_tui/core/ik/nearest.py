@@ -24,8 +24,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.ik.numerical import IKResult, solve
+from dhsim_tui.core.ik.numerical_problem import _setup
 from dhsim_tui.core.ik.solutions import nearest_closed_form
 from dhsim_tui.core.model.robot import Robot
 
@@ -58,15 +58,13 @@ def inverse(
     goes, and says what stops it there (a joint's limit, a singularity)."""
     first = tuple(robot.home if start is None else start)
     if not position_only:
-
-        with np.errstate(all="ignore"):
-            best = nearest_closed_form(robot, target, first)
+        best = nearest_closed_form(robot, target, first)  # plain floats: math raises
         if best is not None and max_change is not None:
             changes = zip(best.q, first, max_change, strict=True)
             if any(abs(a - b) > most for a, b, most in changes):
                 best = None  # another branch: not a continuation
         if best is not None:
-            residual = max(best.residual / length_scale(robot), best.orientation_error)
+            residual = max(best.residual / _setup(robot).scale, best.orientation_error)
             return IKResult(
                 True,
                 best.q,

@@ -4,17 +4,24 @@ A chain is a product of 4×4 transforms, but most of their entries are
 constants: alpha is fixed, and 0° or ±90° more often than not. So
 :class:`Kinematics` writes, once per robot, a straight-line Python function
 with those constants folded in and no loop or numpy call; it computes one
-pose in a few microseconds, about four times faster than a loop of 4×4
+pose in a couple of microseconds, several times faster than a loop of 4×4
 products. Rotations are carried as their three columns (x, y, z axes), so a
 rotation about z touches only x and y, and one about x only y and z.
-A vectorised version of the same recurrence does many joint vectors at once.
-The tests check both against the plain matrix product of the reference.
+The function is written on named values, each entry computed once by the
+same floating-point operations as a run of the chain's lines below, so the
+same bits (:mod:`dhsim_tui.core.model.kinematics_codegen`); it packs the
+pose and the frames straight into a numpy array, the caller's when given
+(``out=``). A vectorised version of the same recurrence does many joint
+vectors at once (:mod:`dhsim_tui.core.model.kinematics_batch`).
+The tests check them all against the plain matrix product of the reference.
 """
 
 from __future__ import annotations
 
 import functools
 import math
+import operator
+import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -22,6 +29,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.kinematics_batch import BatchKinematics, check_out
+from dhsim_tui.core.model.kinematics_codegen import NAMES, ROWS, chain_function, packer
 from dhsim_tui.core.model.orientation import (
     base_transform,
     cos_sin,
@@ -34,8 +43,6 @@ if TYPE_CHECKING:
     from dhsim_tui.core.model.robot import Robot
 
 _DEG = math.pi / 180.0
-#: batch FK works on slices this long so its arrays stay in the CPU cache
-_CHUNK = 16384
 _AXES = ("x", "y", "z")
 
 
@@ -54,6 +61,10 @@ def read_out(matrix: np.ndarray) -> EndEffector:
     r = matrix[:3, :3]
     xyz = (float(matrix[0, 3]), float(matrix[1, 3]), float(matrix[2, 3]))
     return EndEffector(matrix, xyz, oat_from_matrix(r), rpy_from_matrix(r))
+
+
+# -- the chain as lines of code on the state x0..z2 p0..p2 (the per-joint steps
+# below and the Jacobian's code in analysis/jacobian_codegen.py) -----------------
 
 
 def _rotate(first: str, second: str, c: str, s: str) -> str:
@@ -131,32 +142,12 @@ def _start(robot: Robot) -> tuple[float, ...]:
     return (*(float(v) for v in base[:3, :3].T.reshape(-1)), *(float(v) for v in base[:3, 3]))
 
 
-_STATE = "(x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2)"
-#: the same state as the rows of a 4×4 homogeneous transform
-_MATRIX = "(x0, y0, z0, p0, x1, y1, z1, p1, x2, y2, z2, p2, 0.0, 0.0, 0.0, 1.0)"
+_STATE = f"({', '.join(NAMES)})"
 
 
 def _compile(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
-    """Write and compile ``f(q)`` for this robot; ``record`` returns every frame."""
-    start = [repr(float(v)) for v in _start(robot)]
-    body = [f"{_STATE[1:-1]} = {', '.join(start)}"]
-    qs = ", ".join(f"q{i}" for i in range(robot.dof))
-    body.append(f"{qs}, = q")
-    if record:
-        body.append(f"out = list({_MATRIX})")
-    for i in range(robot.dof):
-        body += _joint_lines(robot, i)
-        if record:
-            body.append(f"out += {_MATRIX}")
-    if tool is not None:
-        body += _constant_lines(tool)
-    body.append(f"out += {_MATRIX}" if record else f"return {_STATE}")
-    if record:
-        body.append("return out")
-    source = "def chain(q):\n" + "\n".join(f"    {line}" for line in body) + "\n"
-    namespace: dict = {"_cos": math.cos, "_sin": math.sin}
-    exec(compile(source, f"<dhsim chain: {robot.name}>", "exec"), namespace)
-    return namespace["chain"]
+    """The chain compiled whole (see :mod:`~dhsim_tui.core.model.kinematics_codegen`)."""
+    return chain_function(robot, tool, _start(robot), record)
 
 
 #: a chain is compiled whole after this many calls; until then it runs as a
@@ -176,26 +167,12 @@ def _step(lines: tuple[str, ...]) -> Callable:
     return namespace["step"]
 
 
-def _matrix(s: tuple[float, ...]) -> list[float]:
-    """The state's 4×4 rows, flat (as ``_MATRIX``)."""
-    return [
-        s[0],
-        s[3],
-        s[6],
-        s[9],
-        s[1],
-        s[4],
-        s[7],
-        s[10],
-        s[2],
-        s[5],
-        s[8],
-        s[11],
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-    ]
+_ROW_ITEMS = operator.itemgetter(*(NAMES.index(name) for name in ROWS))
+
+
+def _matrix(state: tuple[float, ...]) -> list[float]:
+    """The state's 4×4 rows, flat."""
+    return [*_ROW_ITEMS(state), 0.0, 0.0, 0.0, 1.0]
 
 
 def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
@@ -205,8 +182,9 @@ def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     if tool is not None:
         steps.append(_step(tuple(_constant_lines(tool))))
     dof = robot.dof
+    pack = packer(16 * (dof + 2) if record else 16)
 
-    def chain(q):
+    def chain(q, o=None):
         values = tuple(q)
         if len(values) != dof:
             raise ValueError(f"got {len(values)}")
@@ -216,13 +194,25 @@ def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
             state = step(state, value)
             if record:
                 out += _matrix(state)
-        if not record:
-            return state
-        if tool is None:
+        if record and tool is None:
             out += _matrix(state)  # the tool frame is the last joint's
-        return out
+        if o is not None:
+            pack(o, 0, *(out if record else _matrix(state)))
+            return None
+        return out if record else state
 
     return chain
+
+
+_ndarray = np.ndarray
+_empty = np.empty
+_F64 = np.dtype(np.float64)
+_POSE = (4, 4)
+
+
+def _floats(q: np.ndarray) -> Sequence[float]:
+    """A float64 vector as a list (numpy scalars are slow in Python arithmetic)."""
+    return q.tolist() if q.ndim == 1 and q.dtype == _F64 else q
 
 
 class Kinematics:
@@ -230,7 +220,8 @@ class Kinematics:
     degrees for revolute joints, the length unit for prismatic ones.
 
     Limits are not checked here (use :meth:`Robot.check_q`), so a study may
-    look at any configuration.
+    look at any configuration. ``out=`` takes a float64 array of the result's
+    shape to fill and return, instead of a new one.
     """
 
     def __init__(self, robot: Robot) -> None:
@@ -241,132 +232,109 @@ class Kinematics:
         self.tool[:3, :3] = rpy_matrix(*robot.tool.rpy)
         self.tool[:3, 3] = robot.tool.xyz
         self._tool = None if robot.tool.is_identity else self.tool
-        # [pose chain, frames chain] and how often each ran
-        self._chains = [_stepwise(robot, self._tool, False), _stepwise(robot, self._tool, True)]
-        self._calls = [0, 0]
+        self._frames_shape = (robot.dof + 2, 4, 4)
+        # chain(q, o=None) of the end effector and of every frame: stepwise
+        # (counting calls) until compiled
+        self._pose_chain = self._warming(False)
+        self._frames_chain = self._warming(True)
+        self._batch = BatchKinematics(robot, self.base, self._tool)
 
-    def _call(self, record: bool, q: Sequence[float]):
-        calls = self._calls[record] = self._calls[record] + 1
-        if calls == COMPILE_AFTER:  # in use: worth the whole compile
-            self._chains[record] = _compile(self.robot, self._tool, record)
-        try:
-            return self._chains[record](q)
-        except (ValueError, TypeError) as exc:
-            raise DhsimError(
-                f"expected {self.dof} joint values for {self.robot.name!r}: {exc}"
-            ) from None
+    def _warming(self, record: bool) -> Callable:
+        """The stepwise chain, which compiles the whole one on its
+        :data:`COMPILE_AFTER`-th call and puts it in its own place."""
+        stepwise = _stepwise(self.robot, self._tool, record)
+        robot, tool, owner = self.robot, self._tool, weakref.ref(self)
+        calls = 0
+
+        def chain(q, o=None):
+            nonlocal calls
+            calls += 1
+            if calls < COMPILE_AFTER:
+                return stepwise(q, o)
+            compiled = _compile(robot, tool, record)
+            kinematics = owner()
+            if kinematics is not None:  # in use: worth the whole compile
+                setattr(kinematics, "_frames_chain" if record else "_pose_chain", compiled)
+            return compiled(q, o)
+
+        chain.warming = True
+        return chain
+
+    def _bad_q(self, exc: Exception) -> DhsimError:
+        return DhsimError(f"expected {self.dof} joint values for {self.robot.name!r}: {exc}")
+
+    def _refill(self, exc: Exception, method: Callable, q, out: np.ndarray) -> np.ndarray:
+        """After packing into ``out`` failed: an ``out`` that is not C-contiguous
+        gets a new array's values; else the joint values were wrong."""
+        if not out.flags.writeable:
+            raise DhsimError("out must be a writable array") from None
+        if out.flags.c_contiguous:
+            raise self._bad_q(exc) from None
+        out[...] = method(q)
+        return out
 
     def state(self, q: Sequence[float]) -> tuple[float, ...]:
         """The end effector as 12 floats (x, y, z axes then origin): the fast path."""
-        return self._call(False, q)
+        if q.__class__ is _ndarray:
+            q = _floats(q)
+        try:
+            return self._pose_chain(q)
+        except (ValueError, TypeError) as exc:
+            raise self._bad_q(exc) from None
 
     def state_function(self) -> Callable[[Sequence[float]], tuple[float, ...]]:
         """:meth:`state` as the compiled function itself (compiled now if it
         was not yet), for a loop over many joint vectors: no call count and
         no wrapping of errors (a wrong count of values raises ValueError)."""
-        if self._calls[False] < COMPILE_AFTER:
-            self._calls[False] = COMPILE_AFTER
-            self._chains[False] = _compile(self.robot, self._tool, False)
-        return self._chains[False]
+        if getattr(self._pose_chain, "warming", False):
+            self._pose_chain = _compile(self.robot, self._tool, False)
+        return self._pose_chain
 
     def position(self, q: Sequence[float]) -> tuple[float, float, float]:
         """The end effector's world XYZ."""
-        s = self._call(False, q)
+        if q.__class__ is _ndarray:
+            q = _floats(q)
+        try:
+            s = self._pose_chain(q)
+        except (ValueError, TypeError) as exc:
+            raise self._bad_q(exc) from None
         return (s[9], s[10], s[11])
 
-    def pose(self, q: Sequence[float]) -> np.ndarray:
+    def pose(self, q: Sequence[float], out: np.ndarray | None = None) -> np.ndarray:
         """The end effector's 4×4 world transform ``B · T1 ··· Tn · Tool``."""
-        x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2 = self._call(False, q)
-        return np.array(
-            ((x0, y0, z0, p0), (x1, y1, z1, p1), (x2, y2, z2, p2), (0.0, 0.0, 0.0, 1.0))
-        )
+        if q.__class__ is _ndarray:
+            q = _floats(q)
+        if out is None:
+            out = _empty(_POSE)
+        elif out.__class__ is not _ndarray or out.shape != _POSE or out.dtype is not _F64:
+            check_out(out, _POSE)
+        try:
+            self._pose_chain(q, out)
+        except (ValueError, TypeError) as exc:
+            return self._refill(exc, self.pose, q, out)
+        return out
 
-    def frames(self, q: Sequence[float]) -> np.ndarray:
+    def frames(self, q: Sequence[float], out: np.ndarray | None = None) -> np.ndarray:
         """World transforms of frames 0..n and the tool: shape (n + 2, 4, 4)."""
-        flat = self._call(True, q)
-        return np.fromiter(flat, float, len(flat)).reshape(-1, 4, 4)
+        if q.__class__ is _ndarray:
+            q = _floats(q)
+        shape = self._frames_shape
+        if out is None:
+            out = _empty(shape)
+        elif out.__class__ is not _ndarray or out.shape != shape or out.dtype is not _F64:
+            check_out(out, shape)
+        try:
+            self._frames_chain(q, out)
+        except (ValueError, TypeError) as exc:
+            return self._refill(exc, self.frames, q, out)
+        return out
 
     def end_effector(self, q: Sequence[float]) -> EndEffector:
         return read_out(self.pose(q))
 
-    def batch(self, qs: np.ndarray) -> np.ndarray:
+    def batch(self, qs: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
         """End-effector transforms for many joint vectors: (N, n) -> (N, 4, 4).
-
-        The same recurrence as :meth:`pose`, on (3, N) arrays updated in place
-        (numpy's float64 sin and cos are the slow part, so each angle costs a
-        single tan, see :func:`_batch_cos_sin`).
-        """
-        qs = np.asarray(qs, dtype=float)
-        if qs.ndim != 2 or qs.shape[1] != self.dof:
-            raise DhsimError(f"expected an array of shape (N, {self.dof}), got {qs.shape}")
-        count = qs.shape[0]
-        out = np.zeros((4, 4, count))  # transposed result: out[row, col, sample]
-        out[3, 3] = 1.0
-        for start in range(0, count, _CHUNK):
-            self._batch_chunk(qs[start : start + _CHUNK], out[:, :, start : start + _CHUNK])
-        result = out.transpose(2, 0, 1)
-        return result if self.robot.tool.is_identity else result @ self.tool
-
-    def _batch_chunk(self, qs: np.ndarray, out: np.ndarray) -> None:
-        count = qs.shape[0]
-        axes = [np.repeat(self.base[:3, k : k + 1], count, axis=1) for k in range(3)]
-        p = out[:3, 3]
-        p[...] = self.base[:3, 3:4]
-        scratch = np.empty((3, count))
-        standard = self.robot.convention == "standard"
-        for i, joint in enumerate(self.robot.joints):
-            variable = qs[:, i] + joint.offset if joint.offset else qs[:, i]
-            if joint.is_revolute:
-                rot_z, d = _batch_cos_sin(variable * _DEG), joint.d
-            else:
-                rot_z, d = cos_sin(joint.theta), variable
-            if not standard:
-                _batch_rotate(axes, 1, 2, cos_sin(joint.alpha), scratch)
-                _batch_translate(p, axes[0], joint.a, scratch)
-            _batch_rotate(axes, 0, 1, rot_z, scratch)
-            _batch_translate(p, axes[2], d, scratch)
-            if standard:
-                _batch_translate(p, axes[0], joint.a, scratch)
-                _batch_rotate(axes, 1, 2, cos_sin(joint.alpha), scratch)
-        for k in range(3):
-            out[:3, k] = axes[k]
-
-
-def _batch_cos_sin(rad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """cos and sin from one tan of the half angle (to a few ulp; 2-3× faster)."""
-    t = np.tan(rad * 0.5)
-    t2 = t * t
-    inv = 1.0 / (1.0 + t2)
-    np.multiply(t, 2.0, out=t)
-    t *= inv
-    np.subtract(1.0, t2, out=t2)
-    t2 *= inv
-    return (t2, t)
-
-
-def _batch_rotate(axes: list[np.ndarray], u: int, v: int, cs: tuple, scratch: np.ndarray) -> None:
-    """(axes[u], axes[v]) <- (c·u + s·v, c·v - s·u), in place; 0/±1 cost no products."""
-    c, s = cs
-    first, second = axes[u], axes[v]
-    if isinstance(c, float):
-        if (c, s) == (1.0, 0.0):
-            return
-        if c == 0.0:  # ±90°: swap, negating one
-            np.negative(first if s > 0 else second, out=first if s > 0 else second)
-            axes[u], axes[v] = second, first
-            return
-    np.multiply(first, c, out=scratch)
-    scratch += np.multiply(second, s)
-    second *= c
-    first *= s
-    second -= first
-    first[...] = scratch
-
-
-def _batch_translate(
-    p: np.ndarray, axis: np.ndarray, amount: float | np.ndarray, scratch: np.ndarray
-) -> None:
-    if isinstance(amount, float) and amount == 0.0:
-        return
-    np.multiply(axis, amount, out=scratch)
-    p += scratch
+        ``out``: any float64 (N, 4, 4) array; for a robot without a tool the
+        transpose of a (4, 4, N) one, like the new result, is filled fastest.
+        See :mod:`~dhsim_tui.core.model.kinematics_batch`."""
+        return self._batch(qs, out)
