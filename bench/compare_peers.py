@@ -37,7 +37,9 @@ toolbox's Puma stands on the floor, dhsim's at the shoulder: a constant
 libraries take turns (each target rotates which goes first): FK and the
 Jacobian as blocks of ``CALLS`` calls per target (per-call time, median and
 95th percentile over the targets), the batch as ``BATCH_ROUNDS`` rounds, IK
-as one call per target, each target's fastest of ``IK_REPEAT`` rounds.
+as rounds in which each library solves every target back to back (the
+libraries' order rotating by round), each target's fastest of ``IK_REPEAT``
+rounds.
 Ratio: the row's median over the group's first dhsim row (above 1: dhsim is
 faster); /best: a peer's median over the group's fastest dhsim row. Every
 IK answer is checked with dhsim's FK: "solved" counts the answers the
@@ -168,14 +170,19 @@ def blocks(calls: dict[str, tuple[Callable, list[tuple]]], count: int) -> dict[s
 
 def rounds(calls: dict[str, Callable[[int], Any]], count: int, repeat: int):
     """One call per target and library, each target's fastest of ``repeat``
-    rounds (the order rotating), and the first round's results."""
+    rounds, and the first round's results. In a round each library solves
+    every target back to back, as a loop of a program would (a library timed
+    between another's calls finds its caches taken: ikpy's 3 ms of SciPy
+    slowed dhsim's pure-Python solver by 1.6x when the calls alternated
+    target by target); the libraries' order rotates from round to round, so
+    the machine's drift touches each alike."""
     names = list(calls)
     times = {name: [math.inf] * count for name in names}
     results: dict[str, list] = {name: [None] * count for name in names}
     for round_ in range(repeat):
-        for k in range(count):
-            shift = (k + round_) % len(names)
-            for name in names[shift:] + names[:shift]:
+        shift = round_ % len(names)
+        for name in names[shift:] + names[:shift]:
+            for k in range(count):
                 gc.disable()
                 t = time.perf_counter_ns()
                 result = calls[name](k)
