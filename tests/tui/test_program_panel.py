@@ -167,3 +167,11 @@ async def test_L_makes_R_record_linear_moves_and_the_title_says_so():
         await pilot.press("L", "left", "R")
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["joint", "linear", "joint"]
+        assert "recorded step 3 of program1: a joint move" in status(app)
+        # after the selected step, and said so: step 1 selected, the new one is step 2
+        await pilot.press("g", "up", "up", "L", "R")
+        await pilot.pause()
+        steps = app.robot.program("program1").steps
+        assert [s.move for s in steps] == ["joint", "linear", "linear", "joint"]
+        assert "recorded step 2 of program1: a linear move" in status(app)
+        assert screen.query_one(ProgramPanel).selected == 1

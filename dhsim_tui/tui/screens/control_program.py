@@ -104,8 +104,9 @@ class ProgramPlayer:
         at = self.panel.selected if program.steps else None
         step = Step(self.record_move, tuple(round(v, 6) for v in self.host.q))
         other = "joint" if step.move == "linear" else "linear"
+        number = (at or 0) + 2 if program.steps else 1  # after the selected step
         done = (
-            f"recorded step {len(program.steps) + 1} of {program.name}: a {step.move} move"
+            f"recorded step {number} of {program.name}: a {step.move} move"
             f" (L: record {other} moves)"
         )
         if self._set(with_step(program, step, at), done) and program.steps:
