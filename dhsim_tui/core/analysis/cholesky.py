@@ -1,8 +1,9 @@
-"""Written-out Cholesky factorisations of the smaller Gram matrix (JᵀJ or
+"""A written-out Cholesky factorisation of the smaller Gram matrix (JᵀJ or
 JJᵀ) of a small flat Jacobian, generated once per size: the square root of
-its determinant (:func:`root_gram_det`, the manipulability) and the damped
-least-squares step (:func:`damped_solver`), in plain Python floats, without
-numpy's per-call overhead.
+its determinant (:func:`root_gram_det`, the manipulability), in plain Python
+floats, without numpy's per-call overhead. (The IK's damped step, which also
+factors a Gram matrix, is written into each robot's descent by
+:mod:`dhsim_tui.core.ik.step_codegen`.)
 """
 
 from __future__ import annotations
@@ -12,10 +13,10 @@ import math
 from collections.abc import Callable
 
 
-def _gram_cholesky_lines(m: int, n: int, damped: bool) -> tuple[list[str], int]:
+def _gram_cholesky_lines(m: int, n: int) -> tuple[list[str], int]:
     """Straight-line Cholesky factor L of the smaller Gram matrix of a flat m×n
-    ``jac`` (JᵀJ when n <= m, else JJᵀ), plus ``lam`` on its diagonal when
-    ``damped``: lines defining ``L{i}_{j}``, and the matrix's side."""
+    ``jac`` (JᵀJ when n <= m, else JJᵀ): lines defining ``L{i}_{j}``, and the
+    matrix's side."""
     names = [[f"j{r}_{c}" for c in range(n)] for r in range(m)]
     lines = [f"{', '.join(name for row in names for name in row)}, = jac"] if m and n else []
     side = min(m, n)
@@ -27,7 +28,7 @@ def _gram_cholesky_lines(m: int, n: int, damped: bool) -> tuple[list[str], int]:
 
     for i in range(side):
         for j in range(i + 1):
-            value = gram(i, j) + (" + lam" if damped and i == j else "")
+            value = gram(i, j)
             value += "".join(f" - L{i}_{t}*L{j}_{t}" for t in range(j))
             if i == j:
                 lines.append(f"L{i}_{i} = _sqrt({value})")
@@ -47,7 +48,7 @@ def _generated(name: str, lines: list[str], arguments: str) -> Callable:
 def root_gram_det(m: int, n: int) -> Callable:
     """``f(jac) -> sqrt det`` of the smaller Gram matrix of a flat m×n ``jac``:
     the product of its singular values, 0.0 when it is singular."""
-    lines, side = _gram_cholesky_lines(m, n, damped=False)
+    lines, side = _gram_cholesky_lines(m, n)
     guarded = []
     for line in lines:  # a pivot that is not positive: singular (or rounding of it)
         if line.startswith("L") and "_sqrt(" in line:
@@ -57,33 +58,3 @@ def root_gram_det(m: int, n: int) -> Callable:
             guarded.append(line)
     guarded.append("return " + ("*".join(f"L{i}_{i}" for i in range(side)) or "1.0"))
     return _generated("root_gram_det", guarded, "jac")
-
-
-@functools.lru_cache(maxsize=64)
-def damped_solver(m: int, n: int) -> Callable:
-    """``f(jac, e, lam) -> dx``: the damped least-squares step
-    ``(JᵀJ + lam·I)⁻¹ Jᵀ e = Jᵀ (JJᵀ + lam·I)⁻¹ e`` for a flat m×n ``jac``, by a
-    Cholesky factorisation of the smaller of the two, written out in full (no
-    numpy call: at this size its per-call overhead is most of the cost). Raises
-    ValueError or ZeroDivisionError when the matrix is not positive definite."""
-    lines, side = _gram_cholesky_lines(m, n, damped=True)
-    arguments = "jac, e, lam"
-    if not side:  # no row to solve for (or no joint): no step
-        return _generated("damped_solver", [f"return {[0.0] * n!r}"], arguments)
-    lines.append(f"{', '.join(f'e{r}' for r in range(m))}, = e")
-    if n <= m:  # right-hand side Jᵀe
-        rhs = [" + ".join(f"j{r}_{c}*e{r}" for r in range(m)) for c in range(n)]
-    else:
-        rhs = [f"e{r}" for r in range(m)]
-    for i in range(side):  # L z = rhs
-        value = f"({rhs[i]})" + "".join(f" - L{i}_{t}*z{t}" for t in range(i))
-        lines.append(f"z{i} = ({value}) / L{i}_{i}")
-    for i in reversed(range(side)):  # Lᵀ y = z
-        value = f"z{i}" + "".join(f" - L{t}_{i}*y{t}" for t in range(i + 1, side))
-        lines.append(f"y{i} = ({value}) / L{i}_{i}")
-    if n <= m:
-        lines.append(f"return [{', '.join(f'y{c}' for c in range(n))}]")
-    else:  # dx = Jᵀ y
-        back = [" + ".join(f"j{r}_{c}*y{r}" for r in range(m)) for c in range(n)]
-        lines.append(f"return [{', '.join(back)}]")
-    return _generated("damped_solver", lines, arguments)

@@ -7,8 +7,8 @@ atan2): the forward kinematics (the chain's own lines, from
 (position per reach and the rotation vector), the convergence and give-up
 tests, and only then (the last pass needs none) the Jacobian's columns, the
 smaller Gram matrix (JJᵀ or JᵀJ) plus the damping, its Cholesky factor, the
-two triangular solves and the step, clamped to the joint limits: the
-arithmetic of :func:`~dhsim_tui.core.analysis.cholesky.damped_solver`.
+two triangular solves and the step, clamped to the joint limits:
+``(JᵀJ + λI)⁻¹ Jᵀ e = Jᵀ (JJᵀ + λI)⁻¹ e`` by the smaller matrix.
 
 The lines go through :class:`~dhsim_tui.core.ik.codegen_fold.Folder`: the
 constants (the base frame, a first axis along z, a prismatic column's
@@ -126,8 +126,7 @@ def _measure_lines(picked: Sequence[int], weights: Sequence[float]) -> list[str]
 
 def _solve_lines(jac: list[list[str]], rhs_e: list[str], n: int) -> list[str]:
     """d0 .. d{n-1} = (JᵀJ + lam I)⁻¹ Jᵀ e by the smaller Gram matrix's Cholesky
-    factor, as :func:`~dhsim_tui.core.analysis.cholesky.damped_solver` (its
-    constant terms are the folder's to drop)."""
+    factor (its constant terms are the folder's to drop)."""
     m = len(jac)
     side = min(m, n)
     if not side:
