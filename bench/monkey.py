@@ -50,6 +50,7 @@ KEYS = [
     "[", "]", "\r", "\t", "\x1b", "\x7f", "h", "p", "v", "c", "f", "b", "m", "z", "F",
     "x", "1", "2", "3", "4", "+", "-", "0", "a", "d", "w", "s", "W", "P", "?", "e",
     "t", "S", "\x10", "\x13", "\x1a", "\x19", "\x0f", "5", ".", ",", "q",
+    "g", "R", "L", " ", "n", "l", "\x1b[1;5A", "\x1b[1;5B",  # programs
 ]  # fmt: skip
 #: what a burst answers a dialog's question with
 TEXT = list("0123456789.-, abcxyz")
