@@ -109,8 +109,9 @@ def _dot_runs(scene: ViewScene, xlim, ylim, nx: int, ny: int):
         xs_all.append(np.nan)
         ys_all.append(np.nan)
         owner.extend([number] * (len(line.xs) + 1))
-    px = (np.array(xs_all, dtype=float) - xlim[0]) * sx
-    py = (ylim[1] - np.array(ys_all, dtype=float)) * sy
+    with np.errstate(over="ignore", invalid="ignore"):  # a point too far off: inf, pen lifted
+        px = (np.array(xs_all, dtype=float) - xlim[0]) * sx
+        py = (ylim[1] - np.array(ys_all, dtype=float)) * sy
     xs, ys, segment, along = _sample_segments(px, py, nx, ny)
     line_of = np.array(owner, dtype=np.int64)[segment] if segment.size else segment
     roles = [line.role for line in scene.lines]
