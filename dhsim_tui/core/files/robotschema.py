@@ -12,25 +12,13 @@ from collections.abc import Mapping
 from typing import Any
 
 from dhsim_tui.core.files.programschema import programs_from_data, programs_to_data
+from dhsim_tui.core.model.editing import HEADER_FIELDS
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import Joint, Robot, Tool, default_limits
 from dhsim_tui.core.model.text import counted, printable, shortened
 from dhsim_tui.core.model.validation import check_choice, check_number
 
-TOP_KEYS = (
-    "name",
-    "units",
-    "convention",
-    "base_height",
-    "base_z",
-    "base_x",
-    "base_xyz",
-    "base_rpy",
-    "tool",
-    "poses",
-    "programs",
-    "joints",
-)
+TOP_KEYS = (*HEADER_FIELDS, "tool", "poses", "programs", "joints")
 JOINT_KEYS = ("type", "theta", "d", "a", "alpha", "min", "max", "offset", "vmax", "amax")
 #: a joint's top speed and acceleration: written only when given (None: the defaults)
 JOINT_RATES = ("vmax", "amax")

@@ -27,9 +27,9 @@ from dhsim_tui.core.model.text import counted
 from dhsim_tui.core.model.validation import check_number, perpendicular_axes
 
 JOINT_FIELDS = ("theta", "d", "a", "alpha", "min", "max", "offset")
-#: a robot's fields at the top level, in the order the editor lists them
-#: (and a reload's merge asks about them)
-ROBOT_FIELDS = (
+#: the robot's own settings at the top of its file, in file order (the
+#: file's schema adds the tool, poses, programs and joints tables)
+HEADER_FIELDS = (
     "name",
     "units",
     "convention",
@@ -38,9 +38,19 @@ ROBOT_FIELDS = (
     "base_x",
     "base_xyz",
     "base_rpy",
-    "tool_xyz",
-    "tool_rpy",
 )
+#: a robot's fields at the top level, in the order the editor lists them
+#: (and a reload's merge asks about them): the header and the tool's
+ROBOT_FIELDS = (*HEADER_FIELDS, "tool_xyz", "tool_rpy")
+
+
+def robot_field(robot: Robot, name: str):
+    """The value of one of :data:`ROBOT_FIELDS`."""
+    if name in ("tool_xyz", "tool_rpy"):
+        return getattr(robot.tool, name[5:])
+    return getattr(robot, name)
+
+
 #: fields whose numbers are lengths (converted when the unit changes)
 LENGTH_FIELDS = ("d", "a")
 #: a file name for a robot: letters, digits, space, dot, dash, underscore

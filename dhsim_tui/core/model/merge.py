@@ -25,15 +25,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from typing import Literal
 
-from dhsim_tui.core.model.editing import ROBOT_FIELDS, set_units
+from dhsim_tui.core.model.editing import ROBOT_FIELDS, robot_field, set_units
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.program import Program
 from dhsim_tui.core.model.robot import Joint, Robot, Tool
 from dhsim_tui.core.model.validation import fmt
 
 Side = Literal["mine", "theirs"]
-#: a robot's fields at the top level, in the order they are asked about
-TOP_FIELDS = ROBOT_FIELDS
 JOINT_FIELDS = tuple(f.name for f in fields(Joint))
 #: the key of the whole table (joints added, deleted or moved on a side)
 TABLE = "joints"
@@ -74,18 +72,7 @@ def _text(value: object) -> str:
 
 def _flat(robot: Robot, per_joint: bool) -> dict[str, object]:
     """The robot as {field key: value}."""
-    out: dict[str, object] = {
-        "name": robot.name,
-        "units": robot.units,
-        "convention": robot.convention,
-        "base_height": robot.base_height,
-        "base_z": robot.base_z,
-        "base_x": robot.base_x,
-        "base_xyz": robot.base_xyz,
-        "base_rpy": robot.base_rpy,
-        "tool_xyz": robot.tool.xyz,
-        "tool_rpy": robot.tool.rpy,
-    }
+    out: dict[str, object] = {name: robot_field(robot, name) for name in ROBOT_FIELDS}
     if per_joint:
         for i, joint in enumerate(robot.joints, start=1):
             for name in JOINT_FIELDS:
