@@ -3,7 +3,12 @@ from the reference's formulas (plain 4×4 products), to check the core against."
 
 from __future__ import annotations
 
+import atexit
 import math
+import os
+import shutil
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -107,15 +112,79 @@ def in_tmp(tmp_path, monkeypatch):
 #: the rest are the core's, the scene's and the command line's, which .ci/run
 #: also runs under every Python it finds
 UI_FOLDERS = ("tui", "pty")
+#: folders whose every test is ``slow``: the real dhsim in a pseudo-terminal
+SLOW_FOLDERS = ("pty",)
+
+#: variables of the user's session that change what dhsim does; the tests
+#: run without them, whatever shell started pytest (a test that wants one
+#: sets it itself)
+SESSION_VARIABLES = (
+    "NO_COLOR",
+    "FORCE_COLOR",
+    "COLORTERM",
+    "TEXTUAL",
+    "TEXTUAL_FPS",
+    "COLUMNS",
+    "LINES",
+    "LC_ALL",
+    "LC_CTYPE",
+    "LC_MESSAGES",
+    "LANGUAGE",
+)
+
+
+def _isolate_environment() -> None:
+    """The suite runs the same wherever it runs: its own HOME and XDG
+    folders (no user library, config or recovery files of the person running
+    it), a UTF-8 locale, no colour or size overrides, no DHSIM_* setting.
+    Set before any test runs, so every subprocess and pseudo-terminal the
+    tests start inherits it."""
+    home = Path(tempfile.mkdtemp(prefix="dhsim-tests-home-"))
+    atexit.register(shutil.rmtree, home, ignore_errors=True)
+    for name in list(os.environ):
+        if name.startswith("DHSIM_") and name != "DHSIM_TEST_HANG":
+            del os.environ[name]
+    for name in SESSION_VARIABLES:
+        os.environ.pop(name, None)
+    os.environ["HOME"] = str(home)
+    for name, folder in (
+        ("XDG_DATA_HOME", ".local/share"),
+        ("XDG_CONFIG_HOME", ".config"),
+        ("XDG_STATE_HOME", ".local/state"),
+        ("XDG_CACHE_HOME", ".cache"),
+    ):
+        os.environ[name] = str(home / folder)
+    os.environ["XDG_RUNTIME_DIR"] = str(home / "run")
+    (home / "run").mkdir(mode=0o700)
+    os.environ["DHSIM_RECOVERY_DIR"] = str(home / "recovery")
+    os.environ["LANG"] = "C.UTF-8"
+    os.environ.setdefault("TERM", "xterm-256color")
 
 
 def pytest_configure(config):
     config.addinivalue_line("markers", "ui: drives the terminal UI (Textual, a pseudo-terminal)")
+    config.addinivalue_line(
+        "markers",
+        "slow: a pseudo-terminal, a monkey or a long hypothesis run; "
+        '-m "not slow" is the quick loop',
+    )
+    _isolate_environment()
 
 
 def pytest_collection_modifyitems(config, items):
-    """Mark every test in a UI folder ``ui``: ``-m "not ui"`` runs the core's,
-    the scene's and the command line's alone."""
+    """Mark every test in a UI folder ``ui`` (``-m "not ui"`` runs the core's,
+    the scene's and the command line's alone) and every pseudo-terminal test
+    ``slow``."""
     for item in items:
         if item.path.parent.name in UI_FOLDERS:
             item.add_marker(pytest.mark.ui)
+        if item.path.parent.name in SLOW_FOLDERS:
+            item.add_marker(pytest.mark.slow)
+
+
+@pytest.fixture(autouse=True)
+def _own_working_folder(tmp_path_factory, monkeypatch):
+    """Every test starts in a fresh, empty working folder: none reads or
+    writes the repository's ``robots/`` or litters the checkout (a test that
+    wants ``tmp_path`` there too uses ``in_tmp``)."""
+    monkeypatch.chdir(tmp_path_factory.mktemp("cwd"))

@@ -10,6 +10,15 @@ Here the app takes one key at a time: a key from the terminal is forwarded,
 and the keys behind it wait until it has been handled — it came back and its
 binding ran, or a widget used it — and any dialog it opened is ready for
 typing. Then the next key goes to whatever screen is in front.
+
+The gate must never stop listening. Its check-backs are armed on asyncio's
+own clock and delivered as a message in the app's queue (not through
+Textual's timers and ``call_next`` list, where a fault campaign saw one lost:
+a key held 22-49 s, 40 keys behind it, the "polling" flag set and nothing
+pending). A watchdog, on a task of its own, releases the keys whenever one
+has been held past :data:`HOLD_LIMIT` and no check-back is pending, whatever
+happened; and the quit keys (``ctrl+q``, ``ctrl+c``) never wait behind
+another key.
 """
 
 from __future__ import annotations
@@ -26,6 +35,10 @@ MESSAGE_ROUNDS = 8
 #: the keys behind it (s) before they go on regardless
 POLL = 0.001
 HOLD_LIMIT = 0.5
+#: how often the watchdog looks at the gate (s)
+WATCHDOG = 0.25
+#: keys that never wait behind another: quitting always works
+QUIT_KEYS = frozenset({"ctrl+q", "ctrl+c"})
 
 
 class KeysInOrder(App):
@@ -34,15 +47,25 @@ class KeysInOrder(App):
     _in_flight: events.Key | None = None
     _since = 0.0
     _held: list[events.Key]
-    _polling = False
     _settling = False
     _before: tuple[Screen, frozenset[int]]
+    #: the check-back armed on asyncio's clock, or its message on its way
+    _wake: asyncio.TimerHandle | None = None
+    _wake_posted = False
+    _watchdog: asyncio.Task | None = None
+    #: how many times the watchdog had to release keys (tests, benches)
+    watchdog_releases = 0
 
     @property
     def keys_waiting(self) -> bool:
         """More keys of a burst are still to come: a screen may put off
         drawing until they are handled (see :func:`draw_later`)."""
         return bool(getattr(self, "_held", None))
+
+    @property
+    def _polling(self) -> bool:
+        """A check-back is armed or on its way."""
+        return self._wake is not None or self._wake_posted
 
     async def on_event(self, event: events.Event) -> None:
         if not isinstance(event, events.Key):
@@ -51,6 +74,10 @@ class KeysInOrder(App):
         if not event.is_forwarded:  # straight from the terminal
             if not hasattr(self, "_held"):
                 self._held = []
+            self._start_watchdog()
+            if event.key in QUIT_KEYS:  # never behind a key that may not come back
+                await super().on_event(event)
+                return
             if self._in_flight is not None or self._held:
                 self._held.append(event)
                 self._poll_soon()
@@ -88,12 +115,23 @@ class KeysInOrder(App):
             self._poll_soon()  # the app's loop must run for the worker to go on
 
     def _poll_soon(self) -> None:
-        if not self._polling:
-            self._polling = True
-            self.set_timer(POLL, self._poll)
+        """Check back in :data:`POLL` s (once: a check-back already armed or
+        on its way does)."""
+        if self._polling:
+            return
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:  # no loop: the app is gone
+            return
+        self._wake = loop.call_later(POLL, self._post_poll)
+
+    def _post_poll(self) -> None:
+        """The check-back's time: run :meth:`_poll` in the app's queue."""
+        self._wake = None
+        self._wake_posted = self.post_message(events.Callback(callback=self._poll))
 
     async def _poll(self) -> None:
-        self._polling = False
+        self._wake_posted = False
         key = self._in_flight
         late = asyncio.get_running_loop().time() - self._since > HOLD_LIMIT
         if key is not None and not late:
@@ -122,6 +160,34 @@ class KeysInOrder(App):
             await self._send(held.pop(0))
         if held:
             self._poll_soon()
+
+    # -- the watchdog ---------------------------------------------------------------
+    def _start_watchdog(self) -> None:
+        if self._watchdog is None or self._watchdog.done():
+            self._watchdog = asyncio.get_running_loop().create_task(
+                self._watch(), name="dhsim key gate watchdog"
+            )
+
+    async def _watch(self) -> None:
+        """Every :data:`WATCHDOG` s: a key held past the hold limit with no
+        check-back pending is a lost wake-up; release the keys behind it.
+        Ends with the app."""
+        while not self._exit and self.is_running:
+            await asyncio.sleep(WATCHDOG)
+            if self.stalled():
+                self.watchdog_releases += 1
+                self._wake_posted = False
+                if not self.post_message(events.Callback(callback=self._done)):
+                    return
+
+    def stalled(self) -> bool:
+        """A key (or keys behind one) is held past the hold limit, with no
+        check-back armed: nothing would ever hand the keys on."""
+        busy = self._in_flight is not None or bool(getattr(self, "_held", None))
+        if not busy or self._wake is not None:
+            return False
+        age = asyncio.get_running_loop().time() - self._since
+        return age > HOLD_LIMIT + WATCHDOG
 
     def _dialog_starting(self) -> bool:
         """The key put a screen in front, or started a dialog worker

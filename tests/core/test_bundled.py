@@ -85,3 +85,42 @@ def test_bundled_files_round_trip(bundled, tmp_path):
 
 def test_lookup_by_name_is_case_insensitive_and_accepts_suffix():
     assert load_robot("PUMA560")[0] == load_robot("puma560.toml")[0]
+
+
+# -- bundled is dhsim's own list, not "any file in that folder" --------------------
+
+
+def test_the_bundled_list_names_every_file_dhsim_ships():
+    """The list and the shipped files agree (a robot added to robots/ must be
+    added to the list, or it is not bundled)."""
+    from dhsim_tui.core.files.library import BUNDLED_ROBOTS, bundled_dir
+
+    shipped = {path.stem for path in bundled_dir().glob("*.toml")} - _users_own()
+    assert sorted(shipped) == sorted(BUNDLED_ROBOTS) == bundled_names()
+
+
+def _users_own() -> set[str]:
+    """Files a user saved into an editable install's robots/ (not ours)."""
+    from dhsim_tui.core.files.library import BUNDLED_ROBOTS, bundled_dir
+
+    return {p.stem for p in bundled_dir().glob("*.toml")} - set(BUNDLED_ROBOTS)
+
+
+def test_a_file_saved_beside_the_bundled_ones_is_the_users(tmp_path, monkeypatch):
+    """With an editable install robots/ is the bundled folder: a robot the
+    user saves there is theirs - not listed, not treated as a template."""
+    from dhsim_tui.core.files import library
+    from dhsim_tui.tui.flows.save import is_bundled
+
+    folder = tmp_path / "robots"
+    folder.mkdir()
+    for name in library.BUNDLED_ROBOTS:
+        (folder / f"{name}.toml").write_text((library.bundled_dir() / f"{name}.toml").read_text())
+    mine = folder / "irb120.toml"
+    mine.write_text((folder / "irb140.toml").read_text().replace("IRB 140", "IRB 120"))
+    monkeypatch.setattr(library, "bundled_dir", lambda: folder)
+    assert "irb120" not in library.bundled_names()
+    assert library.bundled_path("irb120") is None
+    assert not library.is_bundled_file(mine) and not is_bundled(mine)
+    assert library.is_bundled_file(folder / "irb140.toml") and is_bundled(folder / "irb140.toml")
+    assert not is_bundled(None)

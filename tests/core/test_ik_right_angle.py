@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 from robot_strategies import angle_triples, reference_pose, triples
 
@@ -37,27 +37,74 @@ def _agree(robot: Robot, target: np.ndarray, preferred, singular: bool = False) 
     """The fitted form's solutions, after checking them against the general
     form's. ``singular``: the wrist is straight, where "flip" and "no flip"
     are one solution and the word is rounding's choice, and where the general
-    form's sine from a cosine (sqrt(1 - c^2)) keeps only ~1e-6 degrees."""
-    same = 1e-4 if singular else SAME
+    form's sine from a cosine (sqrt(1 - c^2)) keeps only ~1e-6 degrees.
+
+    Near a straight (or fully folded) elbow the same holds for "elbow up" and
+    "elbow down": within ~1e-5 degrees of it the two elbow solutions are one
+    configuration to rounding (the elbow's cosine is 1 - d^2/2, so a rounding
+    of 1e-16 in it moves the joints by ~1e-16/d), one form may keep both and
+    the other one (4 solutions against 8: hypothesis found an arm whose elbow
+    stood 0.001 degrees from straight), and the joint values agree only to
+    ~1e-6 degrees. There the test compares the configurations without the
+    elbow word, to 1e-4 degrees, and checks that every solution of both forms
+    reaches the pose: that is what a solution must do."""
     geometry = detect(robot)
     fitted, _ = solve(robot, geometry, target, preferred)
     general, _ = solve(robot, geometry, target, preferred, generic=True)
+    if _elbow_straight(fitted) or _elbow_straight(general) or len(fitted) != len(general):
+        return _agree_at_a_straight_elbow(robot, target, fitted, general, singular)
+    same = 1e-4 if singular else SAME
     if singular:
         fitted = [(q, words.rpartition(", wrist")[0]) for q, words in fitted]
         general = [(q, words.rpartition(", wrist")[0]) for q, words in general]
     assert len(fitted) == len(general), (_key(fitted), _key(general))
     for (qa, wa), (qb, wb) in zip(_key(fitted), _key(general), strict=True):
         assert wa == wb
-        assert max(abs(math.remainder(a - b, 360.0)) for a, b in zip(qa, qb, strict=True)) < 1e-3
+        assert _apart(qa, qb) < 1e-3
     # and one to one, joint for joint, to rounding
     for q, words in fitted:
-        twins = [
-            g
-            for g, w in general
-            if w == words
-            and max(abs(math.remainder(a - b, 360.0)) for a, b in zip(q, g, strict=True)) < same
-        ]
+        twins = [g for g, w in general if w == words and _apart(q, g) < same]
         assert twins, (q, words)
+    return fitted
+
+
+def _apart(qa, qb) -> float:
+    """The largest joint difference (degrees, modulo a turn)."""
+    return max(abs(math.remainder(a - b, 360.0)) for a, b in zip(qa, qb, strict=True))
+
+
+#: two elbow solutions closer than this (degrees) are one configuration to rounding
+ELBOW_MERGED = 1e-3
+
+
+def _without_elbow(words: str) -> str:
+    return ", ".join(word for word in words.split(", ") if not word.startswith("elbow"))
+
+
+def _elbow_straight(solutions) -> bool:
+    """Two solutions differing only in their elbow word stand within
+    ELBOW_MERGED of each other: the elbow is straight to rounding."""
+    return any(
+        wa != wb and _without_elbow(wa) == _without_elbow(wb) and _apart(qa, qb) < ELBOW_MERGED
+        for i, (qa, wa) in enumerate(solutions)
+        for qb, wb in solutions[i + 1 :]
+    )
+
+
+def _agree_at_a_straight_elbow(robot, target, fitted, general, singular) -> list:
+    for solutions in (fitted, general):
+        assert solutions
+        for q, _ in solutions:
+            _reaches(robot, q, target)
+
+    def shown(words: str) -> str:
+        words = _without_elbow(words)
+        return words.rpartition(", wrist")[0] if singular else words
+
+    for ours, theirs in ((fitted, general), (general, fitted)):
+        for q, words in ours:
+            twins = [g for g, w in theirs if shown(w) == shown(words) and _apart(q, g) < 1e-4]
+            assert twins, (q, words)
     return fitted
 
 
@@ -175,7 +222,42 @@ def right_angle_arms(draw) -> Robot:
     return convert(robot, "modified") if draw(st.booleans()) else robot
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+def _straight_elbow_of_the_puma() -> float:
+    """Joint 3's value (degrees) where the Puma's elbow is straight at
+    q2 = -30, q5 = 40: the middle of its two elbow solutions."""
+    puma, _ = load_robot("puma560")
+    q = np.array(puma.home, float)
+    q[1], q[2], q[4] = -30.0, -87.31, 40.0
+    solutions, _ = solve(puma, detect(puma), reference_pose(puma, q), tuple(puma.home))
+    elbows = sorted({round(s[2], 9) for s, _ in solutions})
+    assert len(elbows) == 2
+    return sum(elbows) / 2
+
+
+@pytest.mark.parametrize("apart", [1e-2, 1e-3, 1e-5, 1e-6, 1e-8, 0.0])
+def test_the_two_forms_agree_at_and_near_a_straight_elbow(apart):
+    """The case hypothesis found (an elbow 0.001 degrees from straight): the
+    fitted form gave 4 solutions and the general form 8, their joints ~3e-6
+    degrees apart; both reach the pose. See :func:`_agree`."""
+    puma, _ = load_robot("puma560")
+    q = np.array(puma.home, float)
+    q[1], q[2], q[4] = -30.0, _straight_elbow_of_the_puma() - apart, 40.0
+    target = reference_pose(puma, q)
+    found = _agree(puma, target, tuple(puma.home))
+    assert any(_apart(s, q) < 1e-4 for s, _ in found)
+
+
+#: no shrinking: a failure is reported as found, at once (shrinking a near-
+#: singular arm once took 78 s); derandomized, so CI sees the same arms on
+#: every run, and the explicit straight-elbow cases are tested above
+@settings(
+    max_examples=60,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    phases=[Phase.explicit, Phase.generate],
+    suppress_health_check=[HealthCheck.too_slow],
+)
 @given(right_angle_arms(), st.integers(0, 2**32 - 1))
 def test_the_two_forms_agree_on_random_arms(robot, seed):
     geometry = detect(robot)

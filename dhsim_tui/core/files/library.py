@@ -28,16 +28,42 @@ def bundled_dir() -> Path:
     return package.parent / "robots"
 
 
+#: the robots dhsim ships, by its own list: a file the user saves into the
+#: same folder (an editable install's ``robots/``) is the user's, never bundled
+BUNDLED_ROBOTS = (
+    "cobra600",
+    "gantry",
+    "irb140",
+    "panda",
+    "planar2",
+    "puma560",
+    "puma560_modified",
+    "scara_pedestal",
+    "stanford",
+    "ur5",
+)
+
+
 def bundled_names() -> list[str]:
-    return sorted(p.stem for p in bundled_dir().glob("*.toml"))
+    return list(BUNDLED_ROBOTS)
 
 
 def bundled_path(name: str) -> Path | None:
     key = name.lower().removesuffix(".toml")
-    for stem in bundled_names():
+    for stem in BUNDLED_ROBOTS:
         if stem.lower() == key:
             return bundled_dir() / f"{stem}.toml"
     return None
+
+
+def is_bundled_file(path: Path) -> bool:
+    """Whether ``path`` is one of the files dhsim ships (by its list, not by
+    the folder it lies in)."""
+    try:
+        found = bundled_path(path.stem) if path.suffix.lower() == ".toml" else None
+        return found is not None and path.resolve() == found.resolve()
+    except (OSError, RuntimeError, ValueError):
+        return False
 
 
 def resolve(argument: str) -> Path:

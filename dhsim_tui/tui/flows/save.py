@@ -17,7 +17,7 @@ from typing import Literal
 
 from textual.app import App
 
-from dhsim_tui.core.files.library import bundled_dir
+from dhsim_tui.core.files.library import is_bundled_file
 from dhsim_tui.core.files.robotfile import (
     FileChangedError,
     FileStamp,
@@ -58,13 +58,10 @@ class SaveResult:
 
 
 def is_bundled(path: Path | None) -> bool:
-    """A bundled robot file is a template: saving it asks for a new name."""
-    if path is None:
-        return False
-    try:
-        return path.resolve().parent == bundled_dir().resolve()
-    except (OSError, RuntimeError, ValueError):  # working folder gone, loop, NUL
-        return False
+    """A bundled robot file is a template: saving it asks for a new name.
+    Bundled is what dhsim ships by its own list, wherever the user's own
+    files lie (an editable install saves beside the bundled ones)."""
+    return path is not None and is_bundled_file(path)
 
 
 #: a path in a message is at most this long, so it fits one line of the
