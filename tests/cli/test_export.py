@@ -299,6 +299,7 @@ def test_urdf_gimbal_lock_origins(rpy, alpha):
         check_urdf_fk(robot, _load_urdf(to_urdf(robot)), [(10.0, 20.0), (0.0, 0.0)])
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=300, deadline=None)
 @given(
     roll=angles,

@@ -23,6 +23,7 @@ import pytest
 import tomli_w
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from waiting import HANG
 
 from dhsim_tui.cli.main import _open
 from dhsim_tui.core.files import robotfile
@@ -55,11 +56,12 @@ def refusal(text: str) -> str:
     return message
 
 
-# -- the issue's files, in a fresh interpreter: fast and small --------------------------
+# -- the issue's files, in a fresh interpreter: refused in one line, in little memory ----
+# (how long a refusal takes is bench/hostile_inputs.py's figure, not a test's bound)
 
 MEASURE = textwrap.dedent(
     """
-    import contextlib, io, json, resource, sys, time
+    import contextlib, io, json, resource, sys
     from pathlib import Path
     from dhsim_tui.cli.main import main
     from dhsim_tui.core.files.robotfile import load_with_stamp, save, RobotFileError
@@ -74,31 +76,26 @@ MEASURE = textwrap.dedent(
     results = {}
     for name in sys.argv[1:]:
         path = Path(name)
-        before, start = rss(), time.perf_counter()
+        before = rss()
         err = io.StringIO()
         with contextlib.redirect_stderr(err):
             code = main(["check", str(path)])
-        check = time.perf_counter() - start
-        start = time.perf_counter()
         try:
             load_with_stamp(path)  # how the simulator and the editor open a file
             opened = "loaded"
         except RobotFileError as exc:
             opened = str(exc)
-        tui = time.perf_counter() - start
-        start = time.perf_counter()
         save(puma, path)  # saving over such a file reads it first
-        saved = time.perf_counter() - start
         results[path.stem] = {
             "code": code, "err": err.getvalue(), "opened": opened,
-            "seconds": [check, tui, saved], "growth_kib": rss() - before,
+            "growth_kib": rss() - before,
         }
     print(json.dumps(results))
     """
 )
 
 
-def test_the_issues_hostile_files_are_refused_at_once_in_little_memory(tmp_path):
+def test_the_issues_hostile_files_are_refused_in_one_line_in_little_memory(tmp_path):
     paths = []
     for name, text in HOSTILE.items():
         path = tmp_path / f"{name}.toml"
@@ -113,7 +110,7 @@ def test_the_issues_hostile_files_are_refused_at_once_in_little_memory(tmp_path)
         [sys.executable, "-c", MEASURE, *paths],
         capture_output=True,
         text=True,
-        timeout=120,
+        timeout=2 * HANG,  # a hang guard only: the parser took 42 s on such a file
         preexec_fn=limit,
     )
     assert done.returncode == 0, done.stderr[-2000:]
@@ -127,11 +124,11 @@ def test_the_issues_hostile_files_are_refused_at_once_in_little_memory(tmp_path)
         assert f"{name}.toml: {cause}" in lines[0]
         assert len(lines[0]) < 300  # the key is quoted shortened, not 200 KB of it
         assert "line 2" in result["opened"]
-        # the issue's bound; the refusal itself takes about a millisecond
-        assert max(result["seconds"]) < 0.2, result["seconds"]
+        # the parser grew by gigabytes on such a file; the refusal by almost nothing
         assert result["growth_kib"] < 100 * 1024, result["growth_kib"]
-    # the save replaced the hostile file with a fresh, loadable document
-    assert load(paths[0]).name == "Puma 560"
+    # the save replaced every hostile file with a fresh, loadable document
+    for path in paths:
+        assert load(path).name == "Puma 560"
 
 
 def test_the_simulator_opens_files_through_the_same_refusal(tmp_path):
@@ -241,7 +238,7 @@ def test_every_bundled_robot_passes_the_scan_and_loads(path):
     assert load(path).dof >= 1
 
 
-def test_saving_over_a_hostile_file_or_from_a_hostile_text_is_quick_and_fresh(tmp_path):
+def test_saving_over_a_hostile_file_or_from_a_hostile_text_writes_a_fresh_document(tmp_path):
     robot = load(BUNDLED_FILES[0])
     text = render(robot, HOSTILE["key"])  # tomlkit is not given it: a fresh document
     assert loads(text) == robot and "a.a" not in text
@@ -280,6 +277,7 @@ def nested(draw) -> tuple[dict, int]:
     return leaf, depth
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=150, deadline=None)
 @given(document=nested(), multiline=st.booleans())
 def test_the_scan_refuses_exactly_the_documents_with_a_too_deep_header(document, multiline):
@@ -306,6 +304,7 @@ literal_part = st.text(
 dot = st.sampled_from([".", " .", ". ", " . ", "\t.\t"])
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=150, deadline=None)
 @given(
     parts=st.lists(bare_part | basic_part | literal_part, min_size=1, max_size=24),

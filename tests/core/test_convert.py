@@ -61,6 +61,7 @@ def test_every_bundled_robot_converts_exactly_and_back(name):
     )
 
 
+@pytest.mark.slow  # a long hypothesis run
 @SETTINGS
 @given(robot=robots())
 def test_random_robots_convert_exactly(robot):
@@ -80,6 +81,7 @@ def _screw_tool(robot):
     return replace(robot, tool=Tool((0.0, 0.0, z), (0.0, 0.0, yaw)))
 
 
+@pytest.mark.slow  # a long hypothesis run
 @SETTINGS
 @given(robot=robots().filter(lambda r: r.convention == "standard").map(_screw_tool))
 def test_standard_to_modified_to_standard_gives_the_same_table(robot):

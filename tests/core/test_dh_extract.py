@@ -215,6 +215,7 @@ def source_chains(draw):
     return lines, tip, _size(lines, tip), qs
 
 
+@pytest.mark.slow  # a long hypothesis run
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 @settings(max_examples=300, deadline=None)
 @given(source=source_chains())
@@ -230,6 +231,7 @@ def test_extracted_chain_matches_product_of_exponentials(convention, source):
         _assert_frames_on_lines(chain, lines, q, size)
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=200, deadline=None)
 @given(source=source_chains())
 def test_rows_follow_the_documented_choices(source):
@@ -252,6 +254,7 @@ def test_rows_follow_the_documented_choices(source):
     assert np.abs(tool[:2, 3]).max() <= TOL * size
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=200, deadline=None)
 @given(source=source_chains())
 def test_standard_modified_standard_returns_the_same_table(source):
@@ -303,6 +306,7 @@ def _rigid_from(rot, t):
     return out
 
 
+@pytest.mark.slow  # a long hypothesis run
 @pytest.mark.parametrize("convention", ["standard", "modified"])
 @settings(max_examples=200, deadline=None)
 @given(
@@ -326,6 +330,7 @@ def test_convert_keeps_forward_kinematics(convention, raw, base_rot, base_t, too
     assert convert(chain, convention).rows == chain.rows
 
 
+@pytest.mark.slow  # a long hypothesis run
 @settings(max_examples=200, deadline=None)
 @given(raw=rows_strategy, d=coords, theta=coords)
 def test_standard_table_with_a_screw_tool_round_trips(raw, d, theta):

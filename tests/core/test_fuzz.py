@@ -8,6 +8,7 @@ import copy
 import math
 from pathlib import Path
 
+import pytest
 import tomli_w
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
@@ -160,6 +161,7 @@ def edited_robot_text(draw) -> str:
     return text
 
 
+@pytest.mark.slow  # a long hypothesis run
 @FUZZ
 @given(text=st.text() | toml_ish | nested_text() | edited_robot_text())
 def test_arbitrary_text_loads_or_raises_robot_file_error(tmp_path, text):
@@ -178,6 +180,7 @@ def edited_robot_bytes(draw) -> bytes:
     return bytes(data)
 
 
+@pytest.mark.slow  # a long hypothesis run
 @FUZZ
 @given(raw=st.binary(max_size=2000) | edited_robot_bytes())
 def test_arbitrary_bytes_load_or_raise_robot_file_error(tmp_path, raw):
@@ -267,6 +270,7 @@ def mutated_document(draw) -> dict:
     return data
 
 
+@pytest.mark.slow  # a long hypothesis run
 @FUZZ
 @given(data=mutated_document())
 def test_near_valid_documents_load_or_raise_robot_file_error(tmp_path, data):

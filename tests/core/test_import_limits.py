@@ -2,11 +2,12 @@
 
 A CSV or URDF built to waste time and memory is refused at the first fact
 that decides (its size, the 33rd joint row, the first bad cell, the
-1001st link, the 200 001st XML node, the 51st level of nesting), in a
-fraction of a second, with one short line. Time and memory are measured in a
-fresh interpreter (``ru_maxrss`` is the peak resident size, so its growth
-over the import is what the import cost); the bounds are generous (2 s,
-100 MB) where a careless reader took 15 s and 700 MB.
+1001st link, the 200 001st XML node, the 51st level of nesting), with one
+short line. Memory is measured in a fresh interpreter (``ru_maxrss`` is the
+peak resident size, so its growth over the import is what the import cost);
+the bound is generous (100 MB) where a careless reader took 700 MB. How long
+a refusal takes depends on how busy the machine is, so no test bounds it:
+``bench/hostile_inputs.py`` times these files (1 s each, 0.5 s for the first bad cell).
 """
 
 from __future__ import annotations
@@ -14,10 +15,11 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-import time
+import tracemalloc
 from pathlib import Path
 
 import pytest
+from waiting import HANG
 
 from dhsim_tui.core.interop.csv_import import MAX_CSV_BYTES, MAX_POSES
 from dhsim_tui.core.interop.importer import from_csv, from_urdf, import_file
@@ -26,48 +28,45 @@ from dhsim_tui.core.interop.urdf_xml import MAX_URDF_LINKS, MAX_URDF_NODES
 from dhsim_tui.core.model.errors import DhsimError, TipNeeded
 
 ROOT = Path(__file__).resolve().parents[2]
-SECONDS = 2.0
 MEGABYTES = 100
 #: a message quoting a file's text stays this short, whatever the file holds
 SHORT = 400
 
 MEASURE = """
-import json, resource, sys, time
+import json, resource, sys
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.interop.importer import import_file
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-start = time.perf_counter()
 try:
     import_file(sys.argv[1])
     message = None
 except DhsimError as exc:
     message = str(exc)
-seconds = time.perf_counter() - start
 grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
-print(json.dumps({"seconds": seconds, "megabytes": grown / 1024, "message": message}))
+print(json.dumps({"megabytes": grown / 1024, "message": message}))
 """
 
 
 def _measured(path: Path) -> dict:
-    """``import_file(path)`` in a fresh interpreter: seconds, megabytes grown, message."""
+    """``import_file(path)`` in a fresh interpreter: megabytes grown, message."""
     done = subprocess.run(
         [sys.executable, "-c", MEASURE, str(path)],
         capture_output=True,
         text=True,
         check=True,
         cwd=ROOT,
+        timeout=HANG,  # a hang guard only
     )
     return json.loads(done.stdout)
 
 
-def _refused_cheaply(path: Path, *words: str) -> str:
+def _refused_in_little_memory(path: Path, *words: str) -> str:
     outcome = _measured(path)
     message = outcome["message"]
     assert message is not None, "imported"
     assert message.startswith(str(path)) and "\n" not in message and len(message) < SHORT
     for word in words:
         assert word in message, message
-    assert outcome["seconds"] < SECONDS, outcome
     assert outcome["megabytes"] < MEGABYTES, outcome
     return message
 
@@ -79,11 +78,11 @@ def _one_line(message: str) -> None:
 # -- CSV ---------------------------------------------------------------------------------
 
 
-def test_a_million_row_csv_is_refused_in_a_blink(tmp_path):
+def test_a_million_row_csv_is_refused_by_its_size_unread(tmp_path):
     """The issue's case: 1,000,000 rows took 14.9 s and 718 MB to be refused."""
     path = tmp_path / "million.csv"
     path.write_text("theta,d,a,alpha\n" + "0,0,0,0\n" * 1_000_000)
-    _refused_cheaply(path, "bytes is more than dhsim imports from a .csv file")
+    _refused_in_little_memory(path, "bytes is more than dhsim imports from a .csv file")
 
 
 def test_a_csv_just_under_the_cap_stops_at_its_33rd_joint_row(tmp_path):
@@ -91,15 +90,26 @@ def test_a_csv_just_under_the_cap_stops_at_its_33rd_joint_row(tmp_path):
     path = tmp_path / "long.csv"
     path.write_text("theta,d,a,alpha\n" + "0,0,0,0\n" * rows)
     assert path.stat().st_size <= MAX_CSV_BYTES
-    _refused_cheaply(path, "line 34: more than 32 joint rows; a robot has 1 to 32 joints")
+    _refused_in_little_memory(path, "line 34: more than 32 joint rows; a robot has 1 to 32 joints")
 
 
 def test_the_first_bad_cell_decides_before_the_rest_is_read():
     text = "theta,d,a,alpha\n0,0,x,0\n" + "0,0,0,0\n" * 200_000
-    start = time.perf_counter()
-    with pytest.raises(DhsimError, match=r"^arm\.csv: line 2: a: 'x' is not a number$"):
-        from_csv(text, source="arm.csv")
-    assert time.perf_counter() - start < 0.5
+    tracing = tracemalloc.is_tracing()
+    if not tracing:
+        tracemalloc.start()
+    tracemalloc.reset_peak()
+    try:
+        with pytest.raises(DhsimError, match=r"^arm\.csv: line 2: a: 'x' is not a number$"):
+            from_csv(text, source="arm.csv")
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        if not tracing:
+            tracemalloc.stop()
+    # the rest is never split into lines or rows: the peak is the reader's copy
+    # of the text (io.StringIO: 4 bytes a character), where its 200,000 lines
+    # as strings take 8 bytes a character and as CSV rows 16
+    assert peak < 6 * len(text), peak
 
 
 def test_a_csv_text_over_the_cap_is_refused_unread():
@@ -130,10 +140,8 @@ def test_a_csv_text_over_the_cap_is_refused_unread():
     ],
 )
 def test_a_hostile_csv_line_is_one_short_message(text, message):
-    start = time.perf_counter()
     with pytest.raises(DhsimError) as caught:
         from_csv(text, source="arm.csv")
-    assert time.perf_counter() - start < 1.0
     assert message in str(caught.value)
     _one_line(str(caught.value))
 
@@ -151,25 +159,25 @@ def _chain_of(links: int) -> str:
     return f'<robot name="big">{declared}{joints}</robot>'
 
 
-def test_a_urdf_of_ten_thousand_links_is_refused_in_a_blink(tmp_path):
+def test_a_urdf_of_ten_thousand_links_is_refused_at_the_1001st_link(tmp_path):
     path = tmp_path / "huge.urdf"
     path.write_text(_chain_of(10_000))
     assert path.stat().st_size < MAX_URDF_BYTES  # the link count decides, not the size
-    _refused_cheaply(path, f"more than {MAX_URDF_LINKS} <link> elements")
+    _refused_in_little_memory(path, f"more than {MAX_URDF_LINKS} <link> elements")
 
 
 def test_a_fifty_megabyte_urdf_is_refused_by_its_size_unread(tmp_path):
     path = tmp_path / "fifty.urdf"
     with path.open("wb") as handle:
         handle.truncate(50_000_000)  # sparse: its size is what counts
-    _refused_cheaply(path, "50000000 bytes is more than dhsim imports from a .urdf file")
+    _refused_in_little_memory(path, "50000000 bytes is more than dhsim imports from a .urdf file")
 
 
 def test_a_urdf_of_many_small_elements_is_refused_while_streaming(tmp_path):
     path = tmp_path / "nodes.urdf"
     path.write_text('<robot name="r"><link name="a">' + "<b/>" * 900_000 + "</link></robot>")
     assert path.stat().st_size < MAX_URDF_BYTES
-    _refused_cheaply(path, f"more than {MAX_URDF_NODES} XML elements and attributes")
+    _refused_in_little_memory(path, f"more than {MAX_URDF_NODES} XML elements and attributes")
 
 
 def test_a_urdf_of_many_attributes_is_refused(tmp_path):
@@ -177,21 +185,19 @@ def test_a_urdf_of_many_attributes_is_refused(tmp_path):
     attributes = " ".join(f'a{i}=""' for i in range(350_000))
     path.write_text(f'<robot name="r"><link name="a" {attributes}/></robot>')
     assert path.stat().st_size < MAX_URDF_BYTES
-    _refused_cheaply(path, "XML elements and attributes")
+    _refused_in_little_memory(path, "XML elements and attributes")
 
 
 def test_deeply_nested_elements_are_refused(tmp_path):
     path = tmp_path / "deep.urdf"
     path.write_text('<robot name="r">' + "<a>" * 300_000 + "</a>" * 300_000 + "</robot>")
-    _refused_cheaply(path, "nested more than 50 deep")
+    _refused_in_little_memory(path, "nested more than 50 deep")
 
 
 def test_a_chain_of_too_many_moving_joints_stops_before_reading_numbers():
     text = _chain_of(900).replace('<origin xyz="0.1 0 0"/>', '<origin xyz="nan 0 0"/>')
-    start = time.perf_counter()
     with pytest.raises(DhsimError) as caught:
         read_chain(text, source="arm.urdf")
-    assert time.perf_counter() - start < 1.0
     message = str(caught.value)
     assert "has more than 32 moving joints; a robot has 1 to 32" in message
     assert "nan" not in message  # the numbers were never read

@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from waiting import HANG
 
 PACKAGE = Path(__file__).resolve().parents[2] / "dhsim_tui"
 UI_LIBRARIES = ("textual", "plotext", "rich")
@@ -226,7 +227,7 @@ def _lint_imports(cwd: Path, package_parent: Path) -> subprocess.CompletedProces
         env=env,
         capture_output=True,
         text=True,
-        timeout=120,
+        timeout=2 * HANG,  # a hang guard only
     )
 
 

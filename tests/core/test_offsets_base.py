@@ -36,6 +36,7 @@ def _size(robot: Robot) -> float:
     return sum(abs(j.a) + abs(j.d) + max(abs(j.min), abs(j.max)) for j in robot.joints) + 3000
 
 
+@pytest.mark.slow  # a long hypothesis run
 @SETTINGS
 @given(robot=robots())
 def test_fk_equals_the_textbook_product_with_offsets_and_base(robot):
@@ -49,6 +50,7 @@ def test_fk_equals_the_textbook_product_with_offsets_and_base(robot):
         assert _close(frames[-1], expected[-1], size)
 
 
+@pytest.mark.slow  # a long hypothesis run
 @SETTINGS
 @given(robot=robots())
 def test_batch_fk_equals_the_textbook_product(robot):
@@ -183,6 +185,7 @@ def test_a_file_without_offsets_or_base_is_written_without_them():
     assert "offset" not in text and "base_xyz" not in text and "base_rpy" not in text
 
 
+@pytest.mark.slow  # a long hypothesis run
 @SETTINGS
 @given(robot=robots())
 def test_any_robot_reads_back_equal(robot):

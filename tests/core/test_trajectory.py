@@ -14,8 +14,8 @@ from conftest import reference_frames
 
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.errors import DhsimError
+from dhsim_tui.core.model.profiles import LINEAR_ACCELERATION_MM
 from dhsim_tui.core.model.program import Program, Step, top_acceleration, top_speed
-from dhsim_tui.core.motion.profiles import LINEAR_ACCELERATION_MM
 from dhsim_tui.core.motion.trajectory import MAX_SAMPLES, REACH, sample
 
 QN = (0.0, 45.0, -180.0, 0.0, 45.0, 0.0)
@@ -84,9 +84,12 @@ def test_bad_rates_starts_and_lengths_are_refused(puma):
             played(puma, Step("wait", seconds=1.0), rate=rate)
     with pytest.raises(DhsimError, match="outside"):
         played(puma, Step("wait", seconds=1.0), start=(500, 0, 0, 0, 0, 0))
-    long = [Step("wait", seconds=3600.0)] * (MAX_SAMPLES // 360_000 + 1)
-    with pytest.raises(DhsimError, match="samples"):
-        played(puma, *long)
+    # over an hour: the robot itself refuses the program, naming the step
+    with pytest.raises(DhsimError, match=r"step 2: the wait takes 3600 s, .* at most 3600 s"):
+        played(puma, Step("wait", seconds=3600.0), Step("wait", seconds=3600.0))
+    # an hour at 1 kHz: refused before any sample is made
+    with pytest.raises(DhsimError, match=f"at most {MAX_SAMPLES // 1000} s .*lower the rate"):
+        played(puma, Step("wait", seconds=3600.0), rate=1000.0)
 
 
 # -- joint moves ---------------------------------------------------------------------

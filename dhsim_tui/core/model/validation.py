@@ -14,6 +14,11 @@ from typing import TYPE_CHECKING
 
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.program import check_programs
+from dhsim_tui.core.model.program_timing import (
+    MIN_TOP_ACCELERATION,
+    MIN_TOP_SPEED,
+    check_programs_timing,
+)
 from dhsim_tui.core.model.text import control_character, counted, printable, shortened
 from dhsim_tui.core.model.units import (
     AXES,
@@ -24,6 +29,7 @@ from dhsim_tui.core.model.units import (
     MIN_JOINTS,
     UNITS,
     min_length,
+    mm_to_unit,
 )
 
 if TYPE_CHECKING:
@@ -145,11 +151,19 @@ def check_joint(joint: Joint, number: int, units: str) -> None:
             f"{where}.{joint.variable}: home value {fmt(joint.home)} {unit}{shifted} is "
             f"outside the joint's limits {fmt(joint.min)}..{fmt(joint.max)} {unit}"
         )
-    for name, per in (("vmax", "/s"), ("amax", "/s²")):
+    for name, per, least in (("vmax", "/s", MIN_TOP_SPEED), ("amax", "/s²", MIN_TOP_ACCELERATION)):
         value = getattr(joint, name)
-        if value is not None and check_number(value, f"{where}.{name}") <= 0:
+        if value is None:
+            continue
+        if check_number(value, f"{where}.{name}") <= 0:
             raise DhsimError(
                 f"{where}.{name}: must be greater than 0 {unit}{per}, not {fmt(value)}"
+            )
+        floor = least if joint.is_revolute else mm_to_unit(least, units)
+        if value < floor:
+            raise DhsimError(
+                f"{where}.{name}: {fmt(value)} {unit}{per} is slower than any joint; "
+                f"give at least {fmt(floor)} {unit}{per}"
             )
 
 
@@ -227,6 +241,7 @@ def check_robot(robot: Robot) -> None:
         seen.add(name)
         check_joint_values(robot, values, where)
     check_programs(robot)
+    check_programs_timing(robot)
 
 
 def check_joint_values(robot: Robot, q: object, where: str = "q") -> tuple[float, ...]:

@@ -5,12 +5,12 @@
 step each sample is in, its move, the joints and the tool's pose.
 
 - A **joint move** interpolates the joints along one trapezoidal profile
-  (:func:`~dhsim_tui.core.motion.profiles.joint_profile`): every joint
+  (:func:`~dhsim_tui.core.model.profiles.joint_profile`): every joint
   starts and stops together, none faster than its top speed times the move's
   percentage or its top acceleration.
 - A **linear move** takes the tool point along the straight line to the
   target pose's tool point on a trapezoidal profile in path length (the
-  step's speed, :data:`~dhsim_tui.core.motion.profiles.LINEAR_ACCELERATION_MM`)
+  step's speed, :data:`~dhsim_tui.core.model.profiles.LINEAR_ACCELERATION_MM`)
   and turns it on the shortest rotation (a rotation vector scaled along the
   path: the same as slerp). The joints come from IK at every sample, the
   solution nearest the previous sample's joints
@@ -44,24 +44,27 @@ from dhsim_tui.core.ik.nearest import inverse
 from dhsim_tui.core.ik.reasons import amount
 from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.program import Program, Step, linear_speed, target_joints
-from dhsim_tui.core.model.robot import Robot
-from dhsim_tui.core.motion.jog import MAX_JOINT_JUMP_DEG
-from dhsim_tui.core.motion.profiles import (
+from dhsim_tui.core.model.profiles import (
     Trapezoid,
     blend,
     joint_profile,
     line_poses,
     linear_profile,
 )
+from dhsim_tui.core.model.program import Program, Step, linear_speed, target_joints
+from dhsim_tui.core.model.program_timing import MAX_SAMPLES as TIMING_MAX_SAMPLES
+from dhsim_tui.core.model.program_timing import check_timing
+from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.motion.jog import MAX_JOINT_JUMP_DEG
 
 #: samples a second by default, and the range accepted
 DEFAULT_RATE = 100.0
 MIN_RATE = 1.0
 MAX_RATE = 10_000.0
 #: the most samples a trajectory may have (an hour at 100 Hz), and the most
-#: IK solves a program's linear moves may take
-MAX_SAMPLES = 360_000
+#: IK solves a program's linear moves may take (the program's length is
+#: checked against it in closed form before sampling: program_timing)
+MAX_SAMPLES = TIMING_MAX_SAMPLES
 #: linear moves are solved at least this often a second (between samples too)
 IK_RATE = 100.0
 #: IK iterations a solve may take from the previous sample's joints
@@ -160,6 +163,7 @@ def sample(
     if not isinstance(rate, int | float) or not MIN_RATE <= rate <= MAX_RATE:
         raise DhsimError(f"rate: give {MIN_RATE:g} to {MAX_RATE:g} samples a second, not {rate}")
     q = tuple(float(v) for v in robot.check_q(robot.home if start is None else start))
+    check_timing(robot, program, float(rate), q)  # in closed form: refused before sampling
     with np.errstate(all="ignore"):  # degenerate arms: guarded, never printed
         return _Sampler(robot, program, float(rate)).run(q)
 
@@ -219,9 +223,10 @@ class _Sampler:
         degrees = math.degrees(float(np.linalg.norm(turn)))
         speed = linear_speed(step, robot.units)
         profile = linear_profile(robot, length, degrees, speed)
-        indices = self._walk_indices(now, profile.duration)
-        self.solves += len(indices) + 1
+        self._check_size(now + profile.duration)  # before the fine grid is built
+        self.solves += math.ceil(profile.duration * self.rate * self.fine) + 1
         self._check_size(now + profile.duration)
+        indices = self._walk_indices(now, profile.duration)
         times = np.append(indices / (self.rate * self.fine) - now, profile.duration)
         if profile.duration <= 0.0:
             times = times[:0]

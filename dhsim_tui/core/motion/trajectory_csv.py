@@ -35,10 +35,10 @@ import numpy as np
 
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.kinematics import read_out
+from dhsim_tui.core.model.profiles import joint_profile
 from dhsim_tui.core.model.program import MAX_STEPS, MAX_WAIT, Program, Step, check_values
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import printable, shortened
-from dhsim_tui.core.motion.profiles import joint_profile
 from dhsim_tui.core.motion.trajectory import Trajectory
 
 #: significant digits written

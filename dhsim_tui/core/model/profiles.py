@@ -1,4 +1,6 @@
-"""Speed profiles for a program's moves (:mod:`~dhsim_tui.core.motion.trajectory`).
+"""Speed profiles for a program's moves (:mod:`~dhsim_tui.core.motion.trajectory`
+samples them; :mod:`~dhsim_tui.core.model.program_timing` times a program
+with them in closed form, before anything is sampled).
 
 Every move is a path parameter ``s`` going from 0 to 1 along a trapezoidal
 speed profile: a constant acceleration up to a top speed, a cruise, the
@@ -22,6 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -30,7 +33,7 @@ from dhsim_tui.core.model.program import (
     top_acceleration,
     top_speed,
 )
-from dhsim_tui.core.model.robot import Robot, mm_to_unit
+from dhsim_tui.core.model.units import mm_to_unit
 
 #: a linear move's tool acceleration and deceleration (mm/s², in the robot's
 #: unit): the default 250 mm/s is reached in a quarter of a second
@@ -38,6 +41,16 @@ LINEAR_ACCELERATION_MM = 1000.0
 #: the most a linear move turns the tool (deg/s) and its angular acceleration (deg/s²)
 TURN_SPEED = 90.0
 TURN_ACCELERATION = 360.0
+
+
+class Arm(Protocol):
+    """What a profile reads of a robot (a :class:`~dhsim_tui.core.model.robot.Robot`)."""
+
+    @property
+    def joints(self) -> Sequence: ...
+
+    @property
+    def units(self) -> str: ...
 
 
 @dataclass(frozen=True)
@@ -77,7 +90,7 @@ def trapezoid(distance: float, top: float, acceleration: float) -> Trapezoid:
     return Trapezoid(distance, top, acceleration, ramp, distance / top + ramp)
 
 
-def joint_limits(robot: Robot, percent: float | None) -> tuple[np.ndarray, np.ndarray]:
+def joint_limits(robot: Arm, percent: float | None) -> tuple[np.ndarray, np.ndarray]:
     """Each joint's top speed at ``percent`` (None: the default) and its top
     acceleration, in deg or robot units per second (per second squared)."""
     share = (JOINT_SPEED_PERCENT if percent is None else percent) / 100.0
@@ -87,7 +100,7 @@ def joint_limits(robot: Robot, percent: float | None) -> tuple[np.ndarray, np.nd
 
 
 def joint_profile(
-    robot: Robot, start: Sequence[float], goal: Sequence[float], percent: float | None
+    robot: Arm, start: Sequence[float], goal: Sequence[float], percent: float | None
 ) -> Trapezoid:
     """The profile of ``s`` for a joint move from ``start`` to ``goal``: joint
     i moves ``s · |goal_i - start_i|``, so its speed is ``ṡ`` times its
@@ -97,12 +110,13 @@ def joint_profile(
     moving = distance > 0.0
     if not moving.any():
         return trapezoid(0.0, 1.0, 1.0)
-    top = float(np.min(speeds[moving] / distance[moving]))
-    acceleration = float(np.min(accelerations[moving] / distance[moving]))
+    with np.errstate(over="ignore"):  # a denormal distance: no time at all (inf)
+        top = float(np.min(speeds[moving] / distance[moving]))
+        acceleration = float(np.min(accelerations[moving] / distance[moving]))
     return trapezoid(1.0, top, acceleration)
 
 
-def linear_profile(robot: Robot, length: float, turn_deg: float, speed: float) -> Trapezoid:
+def linear_profile(robot: Arm, length: float, turn_deg: float, speed: float) -> Trapezoid:
     """The profile of ``s`` for a linear move of ``length`` (robot units) and a
     turn of ``turn_deg`` at tool ``speed`` (robot units a second)."""
     acceleration = mm_to_unit(LINEAR_ACCELERATION_MM, robot.units)
