@@ -146,7 +146,13 @@ def _traceback(screen: PtyScreen) -> str | None:
     return None
 
 
-def _responds(screen: PtyScreen) -> bool:
+#: how long (s) dhsim may take to answer a key, quit, or start before the
+#: monkey calls it hung; the tests pass their own HANG (a busy machine must
+#: not make a hang of a slow answer)
+PATIENCE = 4.0
+
+
+def _responds(screen: PtyScreen, patience: float = PATIENCE) -> bool:
     """The app still answers keys: one of ``?`` (help) and ``escape`` (out
     of a dialog, or leaving the editor, which asks) changes the screen,
     whatever state the burst left it in."""
@@ -154,7 +160,7 @@ def _responds(screen: PtyScreen) -> bool:
     for key in ("?", "\x1b", "?", "\x1b", "\x1b"):
         before = screen.screen_text()
         _write(screen, key)
-        deadline = time.monotonic() + 4
+        deadline = time.monotonic() + patience
         while time.monotonic() < deadline:
             if not screen.proc.isalive() or screen.screen_text() != before:
                 for _ in range(2):
@@ -179,7 +185,7 @@ def _stacks(screen: PtyScreen) -> str:
     return f"{shown}\n-- the last events sent:\n{sent}\n-- the last bytes it wrote:\n{tail}"
 
 
-def _quit(screen: PtyScreen) -> bool:
+def _quit(screen: PtyScreen, patience: float = PATIENCE) -> bool:
     """escape out of everything, ctrl+q, discard: True once it has exited."""
     for _ in range(6):
         if not screen.proc.isalive():
@@ -192,7 +198,7 @@ def _quit(screen: PtyScreen) -> bool:
         if "discard" in text.lower():
             _write(screen, "d")
             time.sleep(0.5)
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + patience + 1
     while screen.proc.isalive() and time.monotonic() < deadline:
         time.sleep(0.05)
     return not screen.proc.isalive()
@@ -210,7 +216,11 @@ def _check_folder(folder: Path, report: Report, what: str) -> None:
 
 
 def run_monkey(
-    sequences: int, seed: int = 1, per_process: int = 25, log=lambda line: None
+    sequences: int,
+    seed: int = 1,
+    per_process: int = 25,
+    log=lambda line: None,
+    patience: float = PATIENCE,
 ) -> Report:
     rng = random.Random(seed)
     report = Report()
@@ -230,7 +240,9 @@ def run_monkey(
         screen = PtyScreen(args, size=size, env=env, cwd=folder)
         report.processes += 1
         try:
-            screen.wait_for(lambda text: "Th1" in text or "theta" in text, timeout=30)
+            screen.wait_for(
+                lambda text: "Th1" in text or "theta" in text, timeout=max(30, patience)
+            )
             for _ in range(min(per_process, sequences - done)):
                 for data, mouse in _sequence(rng, size):
                     if not _write(screen, data):
@@ -247,10 +259,10 @@ def run_monkey(
                     break
                 if not screen.proc.isalive():
                     break  # it quit (q answered "discard"): a new process
-                if not _responds(screen):
+                if not _responds(screen, patience):
                     report.hangs.append(f"{what}: no redraw after a key:\n{_stacks(screen)}")
                     break
-            if screen.proc.isalive() and not _quit(screen):
+            if screen.proc.isalive() and not _quit(screen, patience):
                 report.hangs.append(f"{what}: did not quit when asked:\n{_stacks(screen)}")
             found = _traceback(screen)
             if found and f"{what}: {found}" not in report.tracebacks:
@@ -271,7 +283,9 @@ def run_monkey(
     return report
 
 
-def palette_bursts(runs: int, seed: int = 2, log=lambda line: None) -> Report:
+def palette_bursts(
+    runs: int, seed: int = 2, log=lambda line: None, patience: float = PATIENCE
+) -> Report:
     """ctrl+p and, 0-50 ms later, another key, in the editor; ``runs`` times."""
     rng = random.Random(seed)
     report = Report()
@@ -292,7 +306,7 @@ def palette_bursts(runs: int, seed: int = 2, log=lambda line: None) -> Report:
                     cwd=folder,
                 )
                 report.processes += 1
-                screen.wait_for("theta", timeout=30)
+                screen.wait_for("theta", timeout=max(30, patience))
             follow = rng.choice(["s", "x", "\x7f", "\x1b", "\x10", "\x1b\x10"])
             _write(screen, "\x10")
             time.sleep(rng.uniform(0, 0.05))
@@ -309,10 +323,10 @@ def palette_bursts(runs: int, seed: int = 2, log=lambda line: None) -> Report:
             for _ in range(3):
                 _write(screen, "\x1b")
                 time.sleep(0.08)
-            if not _responds(screen):
+            if not _responds(screen, patience):
                 report.hangs.append(f"burst {run + 1}: no redraw after a key")
             log(f"{run + 1}/{runs} bursts, {len(report.tracebacks)} tracebacks")
-        if screen is not None and screen.proc.isalive() and not _quit(screen):
+        if screen is not None and screen.proc.isalive() and not _quit(screen, patience):
             report.hangs.append("did not quit when asked")
     finally:
         if screen is not None:
@@ -329,13 +343,14 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--per-process", type=int, default=25)
     parser.add_argument("--palette-bursts", type=int, default=0)
+    parser.add_argument("--patience", type=float, default=PATIENCE, help="seconds before a hang")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
     log = (lambda line: None) if args.json else (lambda line: print(line, flush=True))
     if args.palette_bursts:
-        report = palette_bursts(args.palette_bursts, args.seed, log)
+        report = palette_bursts(args.palette_bursts, args.seed, log, args.patience)
     else:
-        report = run_monkey(args.sequences, args.seed, args.per_process, log)
+        report = run_monkey(args.sequences, args.seed, args.per_process, log, args.patience)
     if args.json:
         print(json.dumps(report.as_dict()))
     else:

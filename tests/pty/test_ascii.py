@@ -10,17 +10,17 @@ import os
 import shutil
 import subprocess
 import sys
-import time
 import unicodedata
 from pathlib import Path
 
 import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
-from pilot_helpers import non_ascii_outside_views
+from pilot_helpers import non_ascii_outside_views, press, settled
 from pty_screen import PtyScreen
 from rich.cells import cell_len, get_character_cell_size
 from textual.scrollbar import ScrollBar
+from waiting import until
 
 import dhsim_tui.tui.app
 from dhsim_tui.cli import main as cli
@@ -29,6 +29,7 @@ from dhsim_tui.terminal.ascii_table import to_ascii
 from dhsim_tui.terminal.charset import ascii_key, ascii_text
 from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.help import HelpScreen
@@ -257,37 +258,45 @@ def test_words_at_the_source():
 # -- the screens ---------------------------------------------------------------------
 
 
+async def showing(pilot, kind: type) -> None:
+    """Wait until a ``kind`` screen is in front, ready and drawn."""
+    app = pilot.app
+    await until(pilot, lambda: isinstance(app.screen, kind), kind.__name__)
+    await until(pilot, lambda: getattr(app.screen, "_ready", True) and settled(app), kind.__name__)
+
+
 async def test_the_screens_show_only_ascii_outside_the_views():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, ascii=True)
     async with app.run_test(size=(80, 24), notifications=True) as pilot:
-        await pilot.press("right")
-        await pilot.pause()
+        await showing(pilot, ControlScreen)
+        await press(pilot, "right")
         assert non_ascii_outside_views(app) == []
         footer = app.screen._compositor.render_strips()[-1].text
         assert "^/v Joint" in footer and "q Quit" in footer  # fits 80 columns
-        await pilot.press("enter")  # a value entry: its box and its input's
-        await pilot.pause()
-        assert isinstance(app.screen, ValueEntry)
+        await press(pilot, "enter")  # a value entry: its box and its input's
+        await showing(pilot, ValueEntry)
         assert non_ascii_outside_views(app) == []
-        await pilot.press("escape")
-        await pilot.press("question_mark")
-        await pilot.pause()
-        assert isinstance(app.screen, HelpScreen)
+        await press(pilot, "escape")
+        await showing(pilot, ControlScreen)
+        await press(pilot, "question_mark")
+        await showing(pilot, HelpScreen)
         assert non_ascii_outside_views(app) == []
-        await pilot.press("escape", "e")
-        await pilot.pause()
-        assert isinstance(app.screen, EditorScreen)
-        await pilot.press("t")  # unsaved: the title's mark
-        await pilot.pause()
+        await press(pilot, "escape")
+        await showing(pilot, ControlScreen)
+        await press(pilot, "e")
+        await showing(pilot, EditorScreen)
+        await press(pilot, "t")  # unsaved: the title's mark
         assert " * " in app.screen._compositor.render_strips()[0].text
         assert non_ascii_outside_views(app) == []
-        await pilot.press("tab", "down", "enter")  # a choice (units)
-        await pilot.pause()
+        await press(pilot, "tab", "down", "enter")  # a choice (units)
+        await until(pilot, lambda: not isinstance(app.screen, EditorScreen), "the units choice")
+        await until(pilot, lambda: settled(app), "the units choice drawn")
         assert non_ascii_outside_views(app) == []
-        await pilot.press("escape", "escape")  # leaving asks: save, discard, stay
-        await pilot.pause()
-        assert isinstance(app.screen, SaveGuard)
+        await press(pilot, "escape")
+        await showing(pilot, EditorScreen)
+        await press(pilot, "escape")  # leaving asks: save, discard, stay
+        await showing(pilot, SaveGuard)
         assert non_ascii_outside_views(app) == []
 
 
@@ -322,9 +331,12 @@ def test_under_lc_all_c_every_byte_on_the_terminal_is_ascii(tmp_path):
         term.send("e")
         term.wait_for("D-H variable")
         term.send("escape")
-        term.wait_for(lambda screen: "D-H variable" not in screen and "Th1" in screen)
-        time.sleep(0.2)  # the last frame
-        screen = term.screen_text()
+        # back in the simulator, its frame drawn whole (it may arrive in several reads)
+        screen = term.wait_for(
+            lambda screen: (
+                "D-H variable" not in screen and "+- Puma 560" in screen and "^/v Joint" in screen
+            )
+        )
         term.send("q")
         assert term.wait_exit() == 0
         raw = term.raw_bytes()

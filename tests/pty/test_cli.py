@@ -17,12 +17,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from pty_screen import PtyScreen, dhsim_command
+from waiting import HANG
 
 from dhsim_tui.cli.main import main
+from dhsim_tui.core import bundled_names
 
 ROOT = Path(__file__).resolve().parents[2]
-ROBOTS_DIR = ROOT / "robots"
-BUNDLED_STEMS = sorted(p.stem for p in ROBOTS_DIR.glob("*.toml"))
+#: the robots dhsim ships, by its own list (not whatever lies in the checkout's robots/)
+BUNDLED_STEMS = sorted(bundled_names())
 
 # The Puma 560 of the reference (§5): theta, d, a, alpha (mm, deg)
 PUMA_DH = [
@@ -354,7 +356,7 @@ def dhsim(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess[st
         [sys.executable, "-m", "dhsim_tui", *argv],
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=HANG,
         cwd=cwd,
     )
 
@@ -400,7 +402,7 @@ def test_subprocess_bad_inputs_exit_2_without_traceback(tmp_path):
     assert str(broken) in result.stderr and "line 4" in result.stderr
     # ... and the rest in one fresh interpreter
     inner = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, timeout=60
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG
     )
     assert inner.returncode == 0, inner.stderr
     assert "Traceback" not in inner.stderr
@@ -438,7 +440,7 @@ def test_scripting_commands_do_not_import_ui_libraries():
         """
     )
     result = subprocess.run(
-        [sys.executable, "-c", script], capture_output=True, text=True, timeout=60
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "", f"UI libraries imported: {result.stdout.strip()}"
@@ -508,7 +510,7 @@ def test_simulator_without_a_terminal_exits_2_at_once(argv):
         stdin=subprocess.DEVNULL,
         capture_output=True,
         text=True,
-        timeout=10,
+        timeout=HANG,
     )
     assert (result.returncode, result.stdout, result.stderr) == (2, "", NEEDS_TERMINAL)
 
@@ -524,7 +526,7 @@ def test_simulator_needs_both_stdin_and_stdout_to_be_a_terminal(tty_side):
             **streams,
             stderr=subprocess.PIPE,
             text=True,
-            timeout=10,
+            timeout=HANG,
         )
     finally:
         os.close(terminal_fd)
@@ -550,7 +552,7 @@ def test_no_terminal_check_comes_before_loading_textual():
         stdin=subprocess.DEVNULL,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=HANG,
     )
     assert result.stdout.strip() == "[2, 2, 2] [] 3", result.stderr
 
@@ -565,7 +567,7 @@ def test_scripting_commands_work_without_a_terminal(argv):
         stdin=subprocess.DEVNULL,
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=HANG,
     )
     assert (result.returncode, result.stderr) == (0, ""), result.stderr
     assert result.stdout.strip()
@@ -573,7 +575,7 @@ def test_scripting_commands_work_without_a_terminal(argv):
 
 def test_list_works_without_a_terminal():
     result = subprocess.run(
-        [dhsim_script(), "list"], stdin=subprocess.DEVNULL, capture_output=True, timeout=60
+        [dhsim_script(), "list"], stdin=subprocess.DEVNULL, capture_output=True, timeout=HANG
     )
     assert (result.returncode, result.stderr) == (0, b"")
     assert [line.split()[0] for line in result.stdout.decode().splitlines()] == BUNDLED_STEMS

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from pty_screen import dhsim_command
+from waiting import HANG
 
 from dhsim_tui.cli.main import main
 from dhsim_tui.core.model.text import SHOWN_CHARS, counted, shortened
@@ -39,7 +40,7 @@ def one_line_error(capsys, *argv: str) -> str:
 def dhsim(*argv: str, **kwargs) -> subprocess.CompletedProcess[bytes]:
     kwargs.setdefault("stderr", subprocess.PIPE)
     return subprocess.run(
-        [dhsim_command(), *argv], stdin=subprocess.DEVNULL, timeout=60, check=False, **kwargs
+        [dhsim_command(), *argv], stdin=subprocess.DEVNULL, timeout=HANG, check=False, **kwargs
     )
 
 

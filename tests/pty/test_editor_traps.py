@@ -5,15 +5,14 @@ an unexpected error ending in Textual's traceback."""
 
 from __future__ import annotations
 
-import os
 import sys
-import time
 from pathlib import Path
 
 import pytest
-from pilot_helpers import until as wait_until
-from ptyprocess import PtyProcess
+from pilot_helpers import press, settled
+from pty_screen import PtyScreen
 from textual.containers import Vertical
+from waiting import until
 
 from dhsim_tui.core import load, load_robot, save
 from dhsim_tui.core.model.editing import new_robot
@@ -35,21 +34,28 @@ def editor(app: DhsimApp) -> EditorScreen:
 
 
 async def type_text(pilot, text: str) -> None:
-    await pilot.press("ctrl+u", *text)
+    await press(pilot, "ctrl+u", *text)
+
+
+async def showing(pilot, kind: type, what: str) -> None:
+    """Wait until a ``kind`` screen is in front, ready and drawn."""
+    app = pilot.app
+    await until(pilot, lambda: isinstance(app.screen, kind), what)
+    await until(pilot, lambda: getattr(app.screen, "_ready", True) and settled(app), what)
 
 
 async def test_the_editor_starts_on_the_first_editable_cell_and_says_why_about_the_number():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await wait_until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
+        await showing(pilot, EditorScreen, "the editor")
         table = editor(app).query_one("#joints-table")
         assert table.cursor_coordinate == (0, JOINT_COLUMNS.index("theta"))
         table.move_cursor(column=0)
-        await pilot.press("enter")
-        await pilot.pause()
+        await press(pilot, "enter")
         status = editor(app).query_one("#editor-status")
-        assert "# is the joint's number" in str(status.render()) and status.has_class("-error")
+        await until(pilot, lambda: "# is the joint's number" in str(status.render()), "why not")
+        assert status.has_class("-error")
         assert app.screen is editor(app)  # no dialog
 
 
@@ -59,21 +65,21 @@ async def test_adding_a_pose_puts_the_cursor_on_it_and_enter_edits_the_pose_not_
     save(new_robot("KR5", 6), file)
     app = DhsimApp(load(file), file, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await wait_until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
-        await pilot.press("tab")  # the fields table, cursor on "name"
-        await pilot.press("a")
-        await wait_until(pilot, lambda: isinstance(app.screen, ValueEntry), "the name question")
+        await showing(pilot, EditorScreen, "the editor")
+        await press(pilot, "tab")  # the fields table, cursor on "name"
+        await press(pilot, "a")
+        await showing(pilot, ValueEntry, "the name question")
         await type_text(pilot, "qr")
-        await pilot.press("enter")
-        await wait_until(pilot, lambda: "qr" in editor(app).robot.pose_names, "the pose")
-        await pilot.pause()
-        await pilot.press("enter")
-        await wait_until(pilot, lambda: isinstance(app.screen, ValueEntry), "the pose's values")
+        await press(pilot, "enter")
+        await until(pilot, lambda: "qr" in editor(app).robot.pose_names, "the pose")
+        await showing(pilot, EditorScreen, "back in the editor, the pose drawn")
+        await press(pilot, "enter")
+        await showing(pilot, ValueEntry, "the pose's values")
         title = app.screen.query_one(Vertical).border_title
         assert "pose qr" in str(title)
         await type_text(pilot, "45, 60, 45, 30, 45, 30")
-        await pilot.press("enter")
-        await wait_until(pilot, lambda: app.screen is editor(app), "back in the editor")
+        await press(pilot, "enter")
+        await showing(pilot, EditorScreen, "back in the editor")
         robot = editor(app).robot
         assert robot.name == "KR5"
         assert robot.pose("qr") == (45.0, 60.0, 45.0, 30.0, 45.0, 30.0)
@@ -84,33 +90,33 @@ async def test_no_simulator_of_another_robot_behind_the_first_question(start):
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, start=start, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        first = ValueEntry if start == "new" else EditorScreen  # the count; the editor
+        await showing(pilot, first, "the first question")
         assert not any(isinstance(s, ControlScreen) for s in app.screen_stack)
         assert isinstance(app.screen_stack[1], StartScreen)
         if start == "new":
-            await wait_until(pilot, lambda: isinstance(app.screen, ValueEntry), "the count")
-            await pilot.press("escape")
-        await wait_until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
-        await pilot.press("escape")  # leave (nothing changed): the simulator now
+            await press(pilot, "escape")
+        await showing(pilot, EditorScreen, "the editor")
+        await press(pilot, "escape")  # leave (nothing changed): the simulator now
         if start == "new":  # a new robot is unsaved: discard it
-            await wait_until(pilot, lambda: isinstance(app.screen, SaveGuard), "the guard")
-            await pilot.press("d")
-        await wait_until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
+            await showing(pilot, SaveGuard, "the guard")
+            await press(pilot, "d")
+        await showing(pilot, ControlScreen, "the simulator")
 
 
 async def test_the_palette_is_not_opened_again_while_one_is_opening_or_leaving():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        await pilot.pause()
+        await showing(pilot, ControlScreen, "the simulator")
         # ctrl+p, escape, ctrl+p and escape in one go: the keys a slow link delivers
         for _ in range(3):
             await pilot.press("ctrl+p", "escape", "ctrl+p", "escape", "ctrl+p")
-            await pilot.pause()
+            await until(pilot, lambda: settled(app), "the burst handled")
         palettes = [s for s in app.screen_stack if isinstance(s, DhsimPalette)]
         assert len(palettes) <= 1
-        await pilot.press("escape")
-        await wait_until(pilot, lambda: isinstance(app.screen, ControlScreen), "")
+        await press(pilot, "escape")
+        await showing(pilot, ControlScreen, "the simulator again")
     assert app.return_code in (None, 0)
 
 
@@ -120,14 +126,15 @@ async def test_a_dialog_answers_once_however_fast_the_keys():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await wait_until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
+        await showing(pilot, EditorScreen, "the editor")
         answers: list[bool] = []
         dialog = Confirm("Delete nothing?")
         app.push_screen(dialog, answers.append)
-        await pilot.pause()
+        await showing(pilot, Confirm, "the dialog")
         dialog.dismiss(True)
         dialog.dismiss(False)  # a second key already queued for it
-        await pilot.pause()
+        await until(pilot, lambda: answers and app.screen is not dialog, "the answer")
+        await until(pilot, lambda: settled(app), "everything the answers did")
         assert answers == [True]
         assert isinstance(app.screen, EditorScreen)
 
@@ -159,22 +166,13 @@ def test_a_real_crash_shows_one_line_not_textuals_traceback(in_tmp):
         "robot, path = load_robot('puma560')\n"
         "sys.exit(run_app(robot, path))\n"
     )
-    env = dict(os.environ, TERM="xterm-256color", LANG="C.UTF-8")
-    env["DHSIM_RECOVERY_DIR"] = str(in_tmp / "recovery")
-    proc = PtyProcess.spawn([sys.executable, str(script)], env=env, dimensions=(24, 80))
-    out, sent = b"", False
-    deadline = time.monotonic() + 30
-    while time.monotonic() < deadline:
-        try:
-            out += proc.read(65536)
-        except EOFError:
-            break
-        if not sent and b"Th6" in out:
-            proc.write(b"?")
-            sent = True
-    proc.wait()
-    text = out.decode("utf-8", "replace")
-    assert sent and proc.exitstatus == 1
+    env = {"DHSIM_RECOVERY_DIR": str(in_tmp / "recovery")}
+    with PtyScreen(command=[sys.executable, str(script)], env=env) as term:
+        term.wait_for("Th6")
+        term.send("?")
+        status = term.wait_exit()
+        text = term.raw_bytes().decode("utf-8", "replace")
+    assert status == 1
     assert "dhsim: internal error: RuntimeError: a bug" in text
     assert "Traceback" not in text and "locals" not in text
 
@@ -190,11 +188,15 @@ async def test_long_numbers_scroll_the_table_sideways_and_keep_the_number_in_vie
     save(robot, file)
     app = DhsimApp(load(file), file, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await wait_until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
+        await showing(pilot, EditorScreen, "the editor")
         table = editor(app).query_one("#joints-table")
         assert table.fixed_columns == 1
+
+        def row_one() -> str:  # row 1 as drawn
+            return table.render_line(table.header_height).text
+
         table.move_cursor(row=0, column=JOINT_COLUMNS.index("max"))
-        await pilot.pause(0.3)
-        assert table.scroll_x > 0  # scrolled to show max
-        line = table.render_line(table.header_height).text  # row 1 as drawn
+        # the table scrolls to the cursor after a refresh: wait until max is in view
+        await until(pilot, lambda: table.scroll_x > 0 and "171.123456789" in row_one(), "max")
+        line = row_one()
         assert line.lstrip().startswith("1") and "171.123456789" in line

@@ -21,6 +21,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from pty_screen import dhsim_command
+from waiting import HANG
 
 import dhsim_tui.cli.kinematics as cli_kinematics
 import dhsim_tui.cli.main as cli
@@ -81,7 +82,7 @@ def assert_no_control(data: bytes) -> None:
 
 def dhsim(*argv: str | bytes, **kwargs) -> subprocess.CompletedProcess[bytes]:
     """The real console script, stdin from /dev/null, output as bytes."""
-    kwargs.setdefault("timeout", 60)
+    kwargs.setdefault("timeout", HANG)
     return subprocess.run(
         [dhsim_command(), *argv], stdin=subprocess.DEVNULL, capture_output=True, **kwargs
     )
@@ -403,8 +404,11 @@ def test_no_numpy_warning_with_tiny_or_huge_values(tmp_path):
         print(json.dumps(results))
         """
     )
-    inner = subprocess.run(
-        [sys.executable, "-W", "error", "-c", script], capture_output=True, text=True, timeout=300
+    inner = subprocess.run(  # every command in one run, some on a 32-joint robot: long
+        [sys.executable, "-W", "error", "-c", script],
+        capture_output=True,
+        text=True,
+        timeout=5 * HANG,
     )
     assert inner.returncode == 0 and inner.stderr == "", inner.stderr
     for argv, code, err in json.loads(inner.stdout):
@@ -439,7 +443,7 @@ def test_an_unexpected_error_in_the_real_process_exits_1_without_traceback():
         "c.describe = lambda robot: 1 / 0\n"
         "sys.exit(c.main(['list']))\n"
     )
-    result = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=60)
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=HANG)
     assert result.returncode == 1
     assert result.stderr == b"dhsim: internal error: ZeroDivisionError: division by zero\n"
 
@@ -458,7 +462,7 @@ def test_a_closed_pipe_is_quiet():
     os.close(reader)
     try:
         result = subprocess.run(
-            [dhsim_command(), "list"], stdout=writer, stderr=subprocess.PIPE, timeout=60
+            [dhsim_command(), "list"], stdout=writer, stderr=subprocess.PIPE, timeout=HANG
         )
     finally:
         os.close(writer)

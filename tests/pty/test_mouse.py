@@ -6,13 +6,17 @@ pseudo-terminal at the end."""
 from __future__ import annotations
 
 import pytest
+from pilot_helpers import press, settled
 from pty_screen import PtyScreen
 from textual.coordinate import Coordinate
 from textual.events import MouseMove, MouseScrollDown, MouseScrollUp
+from waiting import until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.motion.jog import snapped
 from dhsim_tui.tui.app import DhsimApp
+from dhsim_tui.tui.screens.control import ControlScreen
+from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.widgets.arm_view import ArmView
 from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel
 from dhsim_tui.tui.widgets.joint_panel import JointPanel
@@ -29,9 +33,28 @@ def rows(app) -> list[JointRow]:
     return list(app.screen.query(JointRow))
 
 
+async def started(pilot) -> None:
+    """The app's first screen is up, ready and drawn: the simulator, or the editor."""
+    app = pilot.app
+    kind = EditorScreen if app.start == "edit" else ControlScreen
+    await until(pilot, lambda: isinstance(app.screen, kind) and app.screen._ready, kind.__name__)
+    await handled(pilot)
+
+
+async def handled(pilot) -> None:
+    """Wait until the app has handled what it was sent and drawn what changed."""
+    await until(pilot, lambda: settled(pilot.app), "the events handled and drawn")
+
+
+async def click(pilot, widget, offset, double: bool = False) -> None:
+    await (pilot.double_click if double else pilot.click)(widget, offset=offset)
+    await handled(pilot)
+
+
 async def wheel(pilot, widget, offset, up: bool = True, times: int = 1) -> None:
     for _ in range(times):
         await pilot._post_mouse_events([MouseScrollUp if up else MouseScrollDown], widget, offset)
+    await handled(pilot)
 
 
 async def drag(pilot, widget, start, path) -> None:
@@ -39,6 +62,7 @@ async def drag(pilot, widget, start, path) -> None:
     for point in path:
         await pilot._post_mouse_events([MouseMove], widget, offset=point, button=1)
     await pilot.mouse_up(widget, offset=path[-1])
+    await handled(pilot)
 
 
 # -- the joints ---------------------------------------------------------------------------
@@ -47,9 +71,9 @@ async def drag(pilot, widget, start, path) -> None:
 async def test_a_click_on_a_joint_selects_it():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         before = app.screen.q
-        await pilot.click(rows(app)[3], offset=(2, 0))  # on the label
+        await click(pilot, rows(app)[3], (2, 0))  # on the label
         assert app.screen.query_one(JointPanel).selected == 3
         assert app.screen.q == before  # a click on the label moves nothing
         assert rows(app)[3].has_class("-selected")
@@ -59,11 +83,10 @@ async def test_a_click_on_a_joint_selects_it():
 async def test_a_click_on_the_bar_sets_the_value_there_rounded_to_the_step(column):
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         row = rows(app)[1]
         width = max(row._bar_width(), 5)
-        await pilot.click(row, offset=(BAR_START + column, 0))
-        await pilot.pause()
+        await click(pilot, row, (BAR_START + column, 0))
         screen = app.screen
         joint = app.robot.joints[1]
         # independent of the widget: the bar's ends are the limits, cells evenly between
@@ -80,7 +103,7 @@ async def test_a_click_on_the_bar_sets_the_value_there_rounded_to_the_step(colum
 async def test_a_drag_along_the_bar_follows_the_pointer_within_the_limits():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         row = rows(app)[2]
         joint = app.robot.joints[2]
         width = max(row._bar_width(), 5)
@@ -98,8 +121,8 @@ async def test_a_drag_along_the_bar_follows_the_pointer_within_the_limits():
 async def test_the_wheel_over_a_joint_steps_it_and_selects_it():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("right_square_bracket", "right_square_bracket")  # 15-degree steps
+        await started(pilot)
+        await press(pilot, "right_square_bracket", "right_square_bracket")  # 15-degree steps
         home = app.screen.q[4]
         await wheel(pilot, rows(app)[4], (3, 0), up=True, times=2)
         assert app.screen.query_one(JointPanel).selected == 4
@@ -111,20 +134,20 @@ async def test_the_wheel_over_a_joint_steps_it_and_selects_it():
 async def test_a_click_on_a_joint_in_cartesian_mode_goes_back_to_the_joints():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("c")
+        await started(pilot)
+        await press(pilot, "c")
         assert app.screen.cartesian
-        await pilot.click(rows(app)[0], offset=(2, 0))
+        await click(pilot, rows(app)[0], (2, 0))
         assert not app.screen.cartesian and app.screen.query_one(JointPanel).selected == 0
 
 
 async def test_cartesian_rows_take_a_click_and_the_wheel():
     app = make_app()
     async with app.run_test(size=(80, 30)) as pilot:
-        await pilot.pause()
-        await pilot.press("p", "c")  # a pose away from the singular home
+        await started(pilot)
+        await press(pilot, "p", "c")  # a pose away from the singular home
         panel = app.screen.query_one("#cartesian")
-        await pilot.click(panel, offset=(3, 2))  # the Z row
+        await click(pilot, panel, (3, 2))  # the Z row
         assert app.screen.query_one(CartesianPanel).row == 2
         z = app.robot.kinematics.position(app.screen.q)[2]
         await wheel(pilot, panel, (3, 2), up=True)
@@ -137,25 +160,23 @@ async def test_cartesian_rows_take_a_click_and_the_wheel():
 async def test_a_click_selects_a_view_and_a_double_click_maximises_it():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         side = app.screen.query_one("#view-side", ArmView)
-        await pilot.click(side, offset=(10, 5))
+        await click(pilot, side, (10, 5))
         assert panel.selected == 2 and side.has_class("-selected")
         assert not panel.maximised
-        await pilot.double_click(side, offset=(10, 5))
-        await pilot.pause()
+        await click(pilot, side, (10, 5), double=True)
         assert panel.maximised and app.screen.has_class("-max")
         assert side.size.width > 100  # the whole screen
-        await pilot.double_click(side, offset=(10, 5))
-        await pilot.pause()
+        await click(pilot, side, (10, 5), double=True)
         assert not panel.maximised
 
 
 async def test_the_wheel_over_a_view_zooms():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         front = app.screen.query_one("#view-front", ArmView)
         await wheel(pilot, front, (20, 8), up=True, times=2)
@@ -168,7 +189,7 @@ async def test_the_wheel_over_a_view_zooms():
 async def test_a_drag_in_the_3d_view_orbits_it_and_elsewhere_does_not():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         iso = app.screen.query_one("#view-iso", ArmView)
         start = panel.orbit
@@ -187,23 +208,21 @@ async def test_a_drag_in_the_3d_view_orbits_it_and_elsewhere_does_not():
 async def test_in_the_editor_a_click_selects_a_cell_and_a_double_click_edits_it():
     app = make_app(start="edit")
     async with app.run_test(size=(100, 30)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         table = app.screen.query_one("#joints-table")
         # the cell of joint 2's "a": find its place from the table itself
         cell = table._get_cell_region(Coordinate(1, 4))  # in the table's content
         inset = table.content_region.offset - table.region.offset  # its border
         offset = (inset.x + cell.x + 1, inset.y + cell.y)
-        await pilot.click(table, offset=offset)
-        await pilot.pause()
+        await click(pilot, table, offset)
         editor = app.screen
         assert table.cursor_coordinate == (1, 4)
         assert app.screen is editor  # no dialog: a click only selects
-        await pilot.click(table, offset=offset)  # a second, slow click: still no dialog
-        await pilot.pause()
+        await click(pilot, table, offset)  # a second, slow click: still no dialog
         assert app.screen is editor
-        await pilot.double_click(table, offset=offset)
-        await pilot.pause()
-        assert app.screen is not editor  # the value dialog for that cell
+        await click(pilot, table, offset, double=True)
+        await until(pilot, lambda: app.screen is not editor, "the value dialog for that cell")
+        await handled(pilot)
         assert "a" in str(app.screen.query_one("Label").render())
 
 

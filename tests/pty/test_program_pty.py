@@ -15,8 +15,9 @@ def test_the_demo_plays_to_its_end_in_a_real_terminal():
         screen.wait_for("×4")
         screen.send(" ")
         screen.wait_for("playing demo")
-        screen.wait_for("played demo", timeout=20)
-        assert "7.85 / 7.85 s" in screen.screen_text()
+        screen.wait_for("played demo")  # however long the machine takes to play it
+        # the panel's time, drawn with that status (the frame may arrive in two reads)
+        screen.wait_for("7.85 / 7.85 s")
         screen.send("t")
         screen.wait_for("tool speed")
         screen.send("\x1b")

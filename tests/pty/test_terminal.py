@@ -10,11 +10,11 @@ from __future__ import annotations
 import re
 import shutil
 import signal
-import time
 from pathlib import Path
 
 import pytest
 from pty_screen import PtyScreen
+from waiting import HANG
 
 from dhsim_tui.core import load, load_robot
 from dhsim_tui.core.files.recovery import write_recovery
@@ -188,22 +188,25 @@ def test_stop_and_cont_never_hang_q(robot_file, recovery_env):
     twice each; every one must still draw its screen again and quit on ``q``."""
     terms = [PtyScreen([str(robot_file)], env=recovery_env) for _ in range(10)]
     stopped = terms[:5]
+    # the ten share the machine: the first of them to draw may wait for all ten
+    together = len(terms) * HANG
     try:
         for term in terms:
-            term.wait_for("Th1", timeout=60)  # ten starts at once on a small machine
+            term.wait_for("Th1", timeout=together)
         for _ in range(2):
             for term in stopped:
                 term.kill(signal.SIGSTOP)
-            time.sleep(0.1)
+            for term in stopped:  # a stop still pending when CONT comes is dropped
+                term.wait_stopped()
             for term in terms:
                 term.clear_screen()
                 term.kill(signal.SIGCONT)
             for term in terms:  # after a continue, the screen is drawn again
-                term.wait_for("Th1", timeout=60)  # ten repaints on a loaded machine
+                term.wait_for("Th1", timeout=together)
         for term in terms:
             term.send("q")
         for term in terms:
-            assert term.wait_exit(timeout=10) == 0
+            assert term.wait_exit(timeout=together) == 0
     finally:
         for term in terms:
             term.close()
