@@ -2,27 +2,45 @@
 
 A save goes to a temporary file ``.{name}.{pid}.{random}.tmp`` in the same
 folder, is flushed and fsynced, keeps the replaced file's owner and mode, and
-is renamed over the target; the folder is fsynced too. Temporary files a
-killed save left behind are removed later (:func:`remove_stale_temps`).
-Every failure is a :class:`RobotFileError` naming the file, with any control
+is renamed over the target; the folder is fsynced too. The rename is done
+under an advisory lock (:func:`locked`, ``fcntl.flock`` on the sidecar
+``.{name}.dhsim-lock``), right after a last check the caller gives (has the
+file changed since it was read?), so two dhsim saves of one file never
+interleave and the check is as late as it can be. Temporary files a killed
+save left behind are removed later (:func:`remove_stale_temps`). Every
+failure is a :class:`RobotFileError` naming the file, with any control
 character in the path escaped.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import re
 import stat
 import tempfile
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # not POSIX: no advisory locks; the last check is still made
+    fcntl = None  # type: ignore[assignment]
 
 from dhsim_tui.core.model.errors import RobotFileError
 from dhsim_tui.core.model.text import printable
 
 #: a temporary file of a killed save is removed after this long even if its pid lives
 STALE_TEMP_SECONDS = 3600
+#: how long a save waits for another dhsim's save of the same file (which holds
+#: the lock for a read and a rename: milliseconds) before it gives up
+LOCK_WAIT_SECONDS = 10.0
+#: how often a waiting save tries the lock again (s)
+LOCK_POLL_SECONDS = 0.005
+#: flock errors that mean "no locks here" (some network or FUSE file systems)
+_NO_LOCKS = {errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOTSUP, errno.EINVAL, errno.ENOSYS}
 
 
 def file_error(message: str, kind: type[RobotFileError] = RobotFileError) -> RobotFileError:
@@ -119,10 +137,116 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def lock_path(target: Path) -> Path:
+    """The sidecar lock of ``target``: ``.{name}.dhsim-lock`` in its folder."""
+    return target.with_name(f".{_temp_stem(target.name)}.dhsim-lock")
+
+
+@contextlib.contextmanager
+def locked(target: Path, given: Path | None = None) -> Iterator[None]:
+    """Hold dhsim's advisory lock on ``target`` (every dhsim write of a file
+    renames under it, so a check made inside holds until the rename).
+
+    The lock is ``fcntl.flock`` on a sidecar file, ``.{name}.dhsim-lock``,
+    not on the target: the target is replaced by the rename (a lock on it
+    would lock the old file, and a file that does not exist yet has nothing
+    to lock), while the sidecar stays put. It is created when needed and
+    removed before the lock is let go, so none is left behind; whoever then
+    gets a lock on the removed one sees that the name is gone (or names
+    another file) and locks again. A lock file that is not empty was not
+    made by dhsim and is never removed. Where there are no advisory locks
+    the body runs unlocked. Waits :data:`LOCK_WAIT_SECONDS` at most, then
+    raises a :class:`RobotFileError` (another dhsim holds it: stopped?)."""
+    lock = lock_path(target)
+    held = _acquire(lock, given if given is not None else target)
+    try:
+        yield
+    finally:
+        if held is not None:
+            fd, mine = held
+            _remove_lock(lock, mine)  # while still holding it
+            os.close(fd)
+
+
+def _acquire(lock: Path, name: Path) -> tuple[int, os.stat_result] | None:
+    """The locked lock file (descriptor and status); None when there are no locks."""
+    if fcntl is None:
+        return None
+    deadline = time.monotonic() + LOCK_WAIT_SECONDS
+    while True:
+        fd = _open_lock(lock)
+        try:
+            mine = os.fstat(fd)
+            if not stat.S_ISREG(mine.st_mode):
+                raise file_error(f"{name}: cannot save: {lock} is not a regular file")
+            if not _flock(fd, lock, name, deadline):  # no locks on this file system
+                _remove_lock(lock, mine)
+                os.close(fd)
+                return None
+        except BaseException:
+            os.close(fd)
+            raise
+        if _same_file(lock, mine):
+            return fd, mine
+        os.close(fd)  # the save that held it removed it (or it was replaced): again
+
+
+def _open_lock(lock: Path) -> int:
+    """The lock file, made if needed (never through a symbolic link); read-only
+    when it is somebody else's (flock needs no write permission)."""
+    flags = os.O_CLOEXEC | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        return os.open(lock, flags | os.O_RDWR | os.O_CREAT, 0o666)  # umask applies
+    except PermissionError:
+        return os.open(lock, flags | os.O_RDONLY)
+
+
+def _flock(fd: int, lock: Path, name: Path, deadline: float) -> bool:
+    """Wait for the lock; False when the file system has no locks."""
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return True
+        except BlockingIOError:
+            if time.monotonic() > deadline:
+                raise file_error(
+                    f"{name}: cannot save: another dhsim is saving this file right now "
+                    f"(it holds {lock}); try again"
+                ) from None
+            time.sleep(LOCK_POLL_SECONDS)
+        except OSError as exc:
+            if exc.errno in _NO_LOCKS:
+                return False
+            raise
+
+
+def _same_file(path: Path, info: os.stat_result) -> bool:
+    try:
+        now = os.stat(path, follow_symlinks=False)
+    except OSError:
+        return False
+    return (now.st_dev, now.st_ino) == (info.st_dev, info.st_ino)
+
+
+def _remove_lock(lock: Path, info: os.stat_result) -> None:
+    """Remove the lock file this save made (an empty one, still the same file)."""
+    with contextlib.suppress(OSError):
+        if _same_file(lock, info) and os.stat(lock, follow_symlinks=False).st_size == 0:
+            os.unlink(lock)
+
+
 def write_atomic(
-    target: Path, given: Path, data: bytes, old: os.stat_result | None
+    target: Path,
+    given: Path,
+    data: bytes,
+    old: os.stat_result | None,
+    check: Callable[[], None] | None = None,
 ) -> os.stat_result:
-    """The atomic write itself; owner and mode of ``old`` (the replaced file) kept."""
+    """The atomic write itself; owner and mode of ``old`` (the replaced file) kept.
+
+    ``check`` runs under :func:`locked`, after the temporary file is written
+    and just before the rename; whatever it raises stops the save (the
+    temporary file is removed, the target untouched)."""
     folder = target.parent if str(target.parent) else Path(".")
     tmp_name = None
     try:
@@ -140,8 +264,11 @@ def write_atomic(
             handle.write(data)
             handle.flush()
             os.fsync(handle.fileno())
-        os.replace(tmp_name, target)
-        tmp_name = None
+        with locked(target, given):
+            if check is not None:
+                check()
+            os.replace(tmp_name, target)
+            tmp_name = None
         _fsync_folder(folder)
         return os.stat(target)
     except FileNotFoundError:

@@ -18,7 +18,14 @@ Saving is atomic (temporary file, fsync, rename) and ``load(save(robot)) ==
 robot`` exactly. Saving over a robot file keeps the user's comments and
 layout (:mod:`dhsim_tui.core.files.tomledit`), its owner, mode and byte order mark;
 a read-only file is refused, and ``expect`` refuses to overwrite a file that
-changed on disk since it was read (:class:`FileStamp`).
+changed on disk since it was read (:class:`FileStamp`): its bytes, or the
+file the path names (a symbolic link made, removed or pointed elsewhere,
+even at the same bytes). That check is made twice: when the save starts,
+and again just before the rename, under dhsim's lock on the file
+(:func:`~dhsim_tui.core.files.atomicfile.locked`), against the very file the
+save read: a change made while the temporary file was written is a
+:class:`ChangedWhileSavingError` (a :class:`FileChangedError`), and the
+change is kept.
 """
 
 from __future__ import annotations
@@ -28,6 +35,7 @@ import os
 import re
 import shlex
 import stat
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from types import EllipsisType
@@ -54,6 +62,12 @@ class FileChangedError(RobotFileError):
     """The file on disk is not the one the robot was read from (or expected absent)."""
 
 
+class ChangedWhileSavingError(FileChangedError):
+    """The file changed (or the path came to name another file) while it was
+    being saved, after the save read it and before the rename: nothing was
+    written; callers ask as for any :class:`FileChangedError`."""
+
+
 class ReadOnlyError(RobotFileError):
     """The file has no write permission; refused whoever runs dhsim."""
 
@@ -62,7 +76,8 @@ class ReadOnlyError(RobotFileError):
 class FileStamp:
     """What a file held when it was read or written."""
 
-    path: Path  # the real file (symlinks resolved)
+    path: Path  # the real file (symlinks resolved): a save to a path that
+    # resolves elsewhere now (a symlink made, removed or changed) is a change
     mtime_ns: int
     size: int
     digest: str  # sha256 of the bytes
@@ -241,22 +256,86 @@ def save(
     then renamed over ``path``. On any failure the old file is untouched.
 
     ``expect``: ``...`` does not check; None means the file must not exist;
-    a stamp means the file must still hold what it held then
-    (:class:`FileChangedError` otherwise). An existing file is updated in
-    place (comments kept); with no file, ``base_text`` is the starting point.
+    a stamp means the file must still hold what it held then, and the path
+    still name the same real file (:class:`FileChangedError` otherwise).
+    With a check, it is made again just before the rename, under the file's
+    lock: the very file this save read, unchanged, through the same link
+    (:class:`ChangedWhileSavingError` otherwise; nothing is written). An
+    existing file is updated in place (comments kept); with no file,
+    ``base_text`` is the starting point.
     Returns the stamp of what was written."""
     given = Path(path)
-    target = _real(given) if given.is_symlink() else given  # write the file, keep the link
+    linked = _link_state(given)
+    target = linked[1] if linked[0] else given  # write the file, keep the link
     existing = _existing(target, given)
-    _check_expect(given, expect, existing)
+    _check_expect(given, expect, existing, linked[1])
     raw = existing[0] if existing else None
     old_text = _text_or_none(raw)
     text = render(robot, old_text if _is_toml(old_text) else base_text)
     had_bom = raw.startswith(BOM) if raw is not None else (base_text or "").startswith("\ufeff")
     data = (BOM if had_bom else b"") + text.encode("utf-8")
     remove_stale_temps(target)
-    info = write_atomic(target, given, data, existing[1] if existing else None)
+    check = None if expect is ... else _still_as_read(given, target, linked, existing)
+    info = write_atomic(target, given, data, existing[1] if existing else None, check)
     return FileStamp(_real(target), info.st_mtime_ns, len(data), hashlib.sha256(data).hexdigest())
+
+
+def _link_state(given: Path) -> tuple[bool, Path]:
+    """Whether ``given`` is a symbolic link, and the real file it names."""
+    try:
+        return given.is_symlink(), _real(given)
+    except (OSError, ValueError) as exc:  # a NUL in the name, ...
+        reason = getattr(exc, "strerror", None) or exc
+        raise _error(f"{given}: cannot save: {reason}") from None
+
+
+def _identity(info: os.stat_result) -> tuple[int, ...]:
+    """What changes when a file is written, replaced, chmod-ed or chown-ed."""
+    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns)
+
+
+def _still_as_read(
+    given: Path,
+    target: Path,
+    linked: tuple[bool, Path],
+    existing: tuple[bytes, os.stat_result] | None,
+) -> Callable[[], None]:
+    """The last check before the rename (run under the file's lock): the path
+    names the same file, through the same link, and the file is the very one
+    the save read (same inode, time, size and bytes), or is still absent."""
+
+    def check() -> None:
+        changed = f"{given}: the file changed on disk since it was opened"
+        if _link_state(given) != linked:
+            raise _error(
+                f"{changed}: it is another file now (a symbolic link was made, removed "
+                "or changed while it was being saved)",
+                ChangedWhileSavingError,
+            )
+        if existing is None:
+            if os.path.lexists(target):
+                raise _error(
+                    f"{changed}: a file of that name was made while it was being saved",
+                    ChangedWhileSavingError,
+                )
+            return
+        try:
+            raw, info = read_file(target, MAX_FILE_BYTES)
+        except RobotFileError:
+            gone = not os.path.lexists(target)
+            raise _error(
+                f"{changed}: it is gone (deleted or renamed)"
+                if gone
+                else f"{changed} (another program changed it while it was being saved)",
+                ChangedWhileSavingError,
+            ) from None
+        if raw != existing[0] or _identity(info) != _identity(existing[1]):
+            raise _error(
+                f"{changed} (another program changed it while it was being saved)",
+                ChangedWhileSavingError,
+            )
+
+    return check
 
 
 def _existing(target: Path, given: Path) -> tuple[bytes, os.stat_result] | None:
@@ -281,7 +360,7 @@ def _existing(target: Path, given: Path) -> tuple[bytes, os.stat_result] | None:
     return read_file(target, MAX_FILE_BYTES)
 
 
-def _check_expect(given: Path, expect: object, existing: tuple | None) -> None:
+def _check_expect(given: Path, expect: object, existing: tuple | None, real: Path) -> None:
     if expect is ...:
         return
     changed = f"{given}: the file changed on disk since it was opened"
@@ -296,6 +375,11 @@ def _check_expect(given: Path, expect: object, existing: tuple | None) -> None:
     raw = existing[0]
     if (len(raw), hashlib.sha256(raw).hexdigest()) != (expect.size, expect.digest):
         raise _error(f"{changed} (another program wrote to it)", FileChangedError)
+    if real != expect.path:  # the same bytes, but another file: a symlink swapped in
+        raise _error(
+            f"{changed}: it is another file now (a symbolic link was made, removed or changed)",
+            FileChangedError,
+        )
 
 
 def _text_or_none(raw: bytes | None) -> str | None:
