@@ -84,6 +84,10 @@ class KeysInOrder(App):
                 return
             await self._send(event)
             return
+        if self._exit or not self.screen_stack:  # quitting: no screen is left to take it
+            if event is self._in_flight:
+                self._in_flight = None
+            return
         await super().on_event(event)  # a key coming back: its bindings run here
         if event is self._in_flight:
             await self._handled()

@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pytest
 from conftest import reference_frames
+from pilot_helpers import press, started
 from rich.color import Color as RichColor
 from rich.color import ColorSystem
 
@@ -312,7 +313,7 @@ async def test_x_cycles_the_frames_and_the_legend_and_captions_say_which():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         front = app.screen.query_one("#view-front", ArmView)
         legend = panel.query_one(".legend")
@@ -321,19 +322,19 @@ async def test_x_cycles_the_frames_and_the_legend_and_captions_say_which():
             roles = front.picture.roles
             return int(sum((roles == ROLE_INDEX[r]).sum() for r in "xyz"))
 
-        await pilot.press("F")  # close up: the axes of every frame show
+        await press(pilot, "F")  # close up: the axes of every frame show
         await pilot.pause()
         every = axis_cells()
         assert "frames: all (x)" in str(legend.render())
-        await pilot.press("x")
+        await press(pilot, "x")
         await pilot.pause()
         assert panel.frames == "ends" and 0 < axis_cells() < every
         assert "frames: base+tool" in str(legend.render())
         assert "frames: base+tool" in str(front.border_subtitle)
-        await pilot.press("x")
+        await press(pilot, "x")
         await pilot.pause()
         assert panel.frames == "none" and axis_cells() == 0
         assert (front.picture.roles == ROLE_INDEX["link"]).any()  # the arm stays
-        await pilot.press("x")
+        await press(pilot, "x")
         await pilot.pause()
         assert panel.frames == "all" and axis_cells() == every

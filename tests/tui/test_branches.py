@@ -7,7 +7,7 @@ import threading
 
 import numpy as np
 import pytest
-from pilot_helpers import until
+from pilot_helpers import HANG, press, settled, until
 from textual import events
 
 from dhsim_tui.core import load_robot
@@ -36,7 +36,7 @@ async def go_start(pilot) -> ControlScreen:
     """p cycles the robot's poses; 'start' is the last one."""
     app = pilot.app
     if "start" in app.robot.pose_names:
-        await pilot.press(*["p"] * len(app.robot.pose_names))
+        await press(pilot, *["p"] * len(app.robot.pose_names))
     await pilot.pause()
     screen = app.screen
     assert isinstance(screen, ControlScreen)
@@ -45,9 +45,9 @@ async def go_start(pilot) -> ControlScreen:
 
 async def press_b(pilot, screen: ControlScreen) -> None:
     """b, and wait until the solutions are found and the arm is where it goes."""
-    await pilot.press("b")
+    await press(pilot, "b")
     await until(pilot, lambda: not screen.finding_branches and not screen.moving, "b's move")
-    await pilot.pause()
+    await until(pilot, lambda: settled(pilot.app), "b's move drawn")
 
 
 def same_tool(robot, q1, q2) -> bool:
@@ -105,12 +105,12 @@ async def test_b_cycles_the_pumas_configurations_with_the_tool_fixed():
         seen = {GOOD}
         configs = set()
         captions = set()
-        for press in range(1, count + 1):
+        for pressed in range(1, count + 1):
             await press_b(pilot, screen)
             q = screen.q
-            assert same_tool(robot, q, GOOD), press
+            assert same_tool(robot, q, GOOD), pressed
             assert pose_panel(app).splitlines()[:6] == readout  # to display precision
-            index = press % count
+            index = pressed % count
             solution = found.solutions[index]
             caption = f"branch {index + 1}/{count}: {solution.config}"
             assert caption in " ".join(pose_panel(app).split())  # wrapped in the panel
@@ -132,25 +132,15 @@ async def test_any_move_of_the_arm_ends_the_cycle():
         screen = await go_start(pilot)
         await press_b(pilot, screen)
         assert "branch 2/" in pose_panel(app)
-        await pilot.press("right")  # a joint step
+        await press(pilot, "right")  # a joint step
         await pilot.pause()
         assert screen._branches is None and "branch" not in pose_panel(app)
         moved = screen.q
         await press_b(pilot, screen)  # starts again from the new pose
         assert "branch 2/" in pose_panel(app) and same_tool(app.robot, screen.q, moved)
-        await pilot.press("h")
+        await press(pilot, "h")
         await pilot.pause()
         assert "branch" not in pose_panel(app)
-
-
-async def sampled(pilot, condition, what: str) -> None:
-    """Wait (up to 10 s) for ``condition``, looking every 20 ms: a pause that
-    waits for the app to be idle would wait out a whole smooth move."""
-    for _ in range(500):
-        await pilot.pause(0.02)
-        if condition():
-            return
-    raise AssertionError(f"timed out waiting for {what}")
 
 
 def type_without_waiting(app, key: str) -> None:
@@ -160,26 +150,36 @@ def type_without_waiting(app, key: str) -> None:
 
 
 async def test_b_moves_smoothly_when_motion_is_on_and_escape_stops_it(monkeypatch):
-    monkeypatch.setattr(
-        "dhsim_tui.core.motion.smooth.DURATION", 2.0
-    )  # slow enough for a busy machine
+    monkeypatch.setattr("dhsim_tui.core.motion.smooth.DURATION", 2.0)
+    on_the_way = []  # (q, pose panel) of each drawing during a move, however many there are
+    refresh = ControlScreen._refresh_pose
+
+    def recording_refresh(self):
+        refresh(self)
+        if self.moving:
+            on_the_way.append((self.q, pose_panel(self.app)))
+
+    monkeypatch.setattr(ControlScreen, "_refresh_pose", recording_refresh)
     app = app_for(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
-        await sampled(pilot, lambda: not screen.moving and screen.q == GOOD, "the start")
+        await until(pilot, lambda: not screen.moving and screen.q == GOOD, "the start")
+        on_the_way.clear()  # the move to the start: not b's
         type_without_waiting(app, "b")
-        await sampled(pilot, lambda: screen.moving, "the move to start")
+        await until(pilot, lambda: screen.moving, "the move to start")
         goal = screen.motion_goal
         assert goal is not None and same_tool(app.robot, goal, GOOD)
-        await sampled(pilot, lambda: screen.q not in (GOOD, goal), "a step on the way")
-        assert "branch 2/" in pose_panel(app)  # said on the way too
-        await sampled(pilot, lambda: not screen.moving, "the move to end")
-        await pilot.pause()
+        await until(pilot, lambda: not screen.moving, "the move to end")
+        await until(pilot, lambda: settled(app), "the end of the move drawn")
         assert screen.q == goal and "branch 2/" in pose_panel(app)
-        type_without_waiting(app, "b")  # the next one, and stop it on the way
-        await sampled(pilot, lambda: screen.moving, "the next move")
-        await pilot.press("escape")
-        await pilot.pause()
+        # it went through poses between, and said which branch on the way too
+        between = [text for q, text in on_the_way if q not in (GOOD, goal)]
+        assert between and all("branch 2/" in text for text in between)
+        # the next one, and stop it on the way: a move that lasts till it is stopped
+        monkeypatch.setattr("dhsim_tui.core.motion.smooth.DURATION", 10 * HANG)
+        type_without_waiting(app, "b")
+        await until(pilot, lambda: screen.moving, "the next move")
+        await press(pilot, "escape")
         assert not screen.moving and screen._branches is None
         assert "branch" not in pose_panel(app)
 
@@ -216,12 +216,12 @@ async def test_a_planar_arm_flips_its_elbow_with_the_tool_in_place():
 
 
 def held_search(monkeypatch) -> threading.Event:
-    """Make the search for solutions wait (up to 5 s) until the returned event is set."""
+    """Make the search for solutions wait until the returned event is set (or a hang)."""
     release = threading.Event()
     real = ik_all.all_solutions
 
     def slow(*args, **kwargs):
-        release.wait(5)
+        release.wait(HANG)
         return real(*args, **kwargs)
 
     monkeypatch.setattr(ik_all, "all_solutions", slow)
@@ -233,17 +233,16 @@ async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
-        await pilot.press("b")
+        await press(pilot, "b")
         await until(pilot, lambda: screen.finding_branches, "the search")
         assert "finding" in status(app)
-        await pilot.press("v", "3")  # other keys go on meanwhile
-        await pilot.pause()
+        await press(pilot, "v", "3")  # other keys go on meanwhile
         assert screen.readout == "rpy" and screen.query_one(ViewsPanel).selected == 2
         assert screen.q == GOOD
-        await pilot.press("b", "b")  # pressed three times in all: three branches on
+        await press(pilot, "b", "b")  # pressed three times in all: three branches on
         release.set()
         await until(pilot, lambda: not screen.finding_branches, "the search to end")
-        await pilot.pause()
+        await until(pilot, lambda: settled(app), "the branch drawn")
         assert same_tool(app.robot, screen.q, GOOD) and screen.q != GOOD
         assert "branch 4/" in status(app)
 
@@ -253,14 +252,13 @@ async def test_an_arm_moved_during_the_search_stays_where_it_was_put(monkeypatch
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
-        await pilot.press("b")
+        await press(pilot, "b")
         await until(pilot, lambda: screen.finding_branches, "the search")
-        await pilot.press("right")  # the joint moves
-        await pilot.pause()
+        await press(pilot, "right")  # the joint moves
         stepped = screen.q
         release.set()
         await until(pilot, lambda: not screen.finding_branches, "the search to end")
-        await pilot.pause()
+        await until(pilot, lambda: settled(app), "the answer handled")
         assert screen.q == stepped and screen._branches is None
 
 
@@ -271,7 +269,7 @@ async def test_the_palette_offers_the_next_branch():
         command = next(c for c in commands_for(app, screen) if c.title == "Next IK branch")
         command.run()
         await until(pilot, lambda: not screen.finding_branches, "the search")
-        await pilot.pause()
+        await until(pilot, lambda: settled(app), "the branch drawn")
         assert screen.q != GOOD and same_tool(app.robot, screen.q, GOOD)
 
 

@@ -9,7 +9,7 @@ import pyte
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from pilot_helpers import until
+from pilot_helpers import press, settled, started, until
 from rich.console import Console
 from rich.segment import Segment
 from rich.style import Style
@@ -328,7 +328,7 @@ async def test_a_real_control_screen_frame_compacts_to_the_same_screen():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "down", "right")
+        await press(pilot, "right", "down", "right")
         await pilot.pause()
         update = app.screen._compositor.render_update(full=True)
         data = update.render_segments(app.console)
@@ -367,7 +367,7 @@ async def test_a_joint_row_is_a_few_styled_runs(size):
             # label, bar to the value, the value, the rest of the bar, the number,
             # the last column: never one segment per glyph, whatever the width
             assert len(segments) <= 7, [s.text for s in segments]
-        await pilot.press(*["shift+right"] * 20)  # Th1 on its max limit: ▶ in red
+        await press(pilot, *["shift+right"] * 20)  # Th1 on its max limit: ▶ in red
         await pilot.pause()
         segments = row_strip(rows[0])
         assert "▶" in "".join(s.text for s in segments)
@@ -382,12 +382,17 @@ def test_the_bar_is_three_runs():
         assert len(bar.plain) == 30
 
 
+def painted(screen) -> bool:
+    """Nothing waits to be painted: every change is on the terminal."""
+    return not (screen._dirty_widgets or screen._layout_required or screen._repaint_required)
+
+
 async def test_a_step_repaints_one_joint_row_and_the_changed_pose_lines():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("down")  # Th2 (choosing repaints the joint panel's caption)
-        await pilot.pause(0.1)
+        await press(pilot, "down")  # Th2 (choosing repaints the joint panel's caption)
         screen = app.screen
+        await until(pilot, lambda: painted(screen), "the choice painted")
         side = screen.query_one("#side-panel").region
         rows = [row.region.y for row in screen.query(JointRow)]
         pose = screen.query_one(PosePanel).region
@@ -400,12 +405,12 @@ async def test_a_step_repaints_one_joint_row_and_the_changed_pose_lines():
 
         app._display = display
         redraws = screen.redraws
-        await pilot.press("right")
-        for _ in range(100):
-            await pilot.pause(0.01)
-            if screen.redraws > redraws and spans:
-                break
-        await pilot.pause(0.1)
+        await press(pilot, "right")
+        await until(
+            pilot,
+            lambda: screen.redraws > redraws and settled(app) and painted(screen) and spans,
+            "the step drawn and painted",
+        )
         app._display = original
         touched = {y for y, x1, _ in spans if x1 < side.right}
         assert rows[1] in touched  # the stepped joint (Th2)
@@ -425,7 +430,7 @@ async def test_the_pose_panel_still_shows_every_change():
     async with app.run_test(size=(80, 24)) as pilot:
         panel = app.screen.query_one(PosePanel)
         before = str(panel.render())
-        await pilot.press("right")
+        await press(pilot, "right")
         await until(pilot, lambda: str(panel.render()) != before, "the pose to change")
         after = str(panel.render())
         screen_text = "\n".join(s.text for s in app.screen._compositor.render_strips())
@@ -443,8 +448,7 @@ def is_ascii(text: str) -> bool:
 async def test_ascii_mode_joint_rows_pose_and_cartesian_panels():
     app = make_app(ascii=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right")
-        await pilot.pause(0.2)
+        await press(pilot, "right")
         rows = [str(row.render()) for row in app.screen.query(JointRow)]
         assert all(is_ascii(row) for row in rows), rows
         assert rows[0].startswith(">") and "deg" in rows[0]
@@ -452,11 +456,11 @@ async def test_ascii_mode_joint_rows_pose_and_cartesian_panels():
         pose = app.screen.query_one(PosePanel)
         text = str(pose.render())
         assert is_ascii(text) and "deg" in text and "mu" in text, text
-        await pilot.press("v", "v")  # the 4x4 transform
+        await press(pilot, "v", "v")  # the 4x4 transform
         await until(pilot, lambda: "3x3" in str(pose.render()), "the 4x4 transform")
         assert is_ascii(str(pose.render())) and "3x3" in str(pose.render())
         assert is_ascii(pose.border_title or "")
-        await pilot.press("c")  # Cartesian jogging
+        await press(pilot, "c")  # Cartesian jogging
         await until(pilot, lambda: app.screen.query(CartesianPanel), "the Cartesian panel")
         cartesian = str(app.screen.query_one(CartesianPanel).render())
         assert is_ascii(cartesian) and "deg" in cartesian
@@ -476,7 +480,7 @@ def test_ascii_bar_limits_and_warnings():
 async def test_unicode_mode_keeps_its_glyphs():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         row = str(app.screen.query(JointRow)[0].render())
         assert row.startswith("▶") and "°" in row and "●" in row
         assert "μ" in str(app.screen.query_one(PosePanel).render())

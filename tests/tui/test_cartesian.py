@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pilot_helpers import frames_pass, press, until
 
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
 from dhsim_tui.core.ik.numerical import rotation_error
@@ -38,17 +39,17 @@ def status(app) -> str:
 async def go_start(pilot):
     """p cycles the Puma's poses; 'start' is the last one."""
     names = pilot.app.robot.pose_names
-    await pilot.press(*["p"] * len(names))
+    await press(pilot, *["p"] * len(names))
     assert screen(pilot.app).q == pilot.app.robot.pose("start")
 
 
 async def test_c_switches_to_cartesian_and_back():
     app = app_at()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("c")
+        await press(pilot, "c")
         assert screen(app).cartesian and app.screen.has_class("-cartesian")
         assert app.screen.query_one("#cartesian").display
-        await pilot.press("c")
+        await press(pilot, "c")
         assert not screen(app).cartesian
 
 
@@ -57,9 +58,9 @@ async def test_stepping_x_slides_the_tool_100mm_with_fixed_orientation():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         start = app.robot.kinematics.pose(screen(app).q)
-        await pilot.press("c", "right_square_bracket")  # 10 mm steps
+        await press(pilot, "c", "right_square_bracket")  # 10 mm steps
         for _ in range(10):
-            await pilot.press("right")
+            await press(pilot, "right")
         q = screen(app).q
         now = app.robot.kinematics.pose(q)
         assert np.allclose(now[:3, 3] - start[:3, 3], (100, 0, 0), atol=1e-3)
@@ -74,9 +75,9 @@ async def test_rows_select_and_rotations_turn_about_the_tool():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         start = app.robot.kinematics.pose(screen(app).q)
-        await pilot.press("c", "f", "down", "down", "down", "down", "down")  # tool Rz
+        await press(pilot, "c", "f", "down", "down", "down", "down", "down")  # tool Rz
         assert screen(app).query_one(CartesianPanel).row == 5
-        await pilot.press("right_square_bracket", "right")  # ladder 0.1, 1, 5: 5 deg
+        await press(pilot, "right_square_bracket", "right")  # ladder 0.1, 1, 5: 5 deg
         now = app.robot.kinematics.pose(screen(app).q)
         assert np.allclose(now[:3, 3], start[:3, 3], atol=1e-3)  # turned in place
         turn = start[:3, :3].T @ now[:3, :3]  # in the tool's own frame
@@ -88,7 +89,7 @@ async def test_enter_sets_an_exact_cartesian_target():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         z = app.robot.kinematics.position(screen(app).q)[2]
-        await pilot.press("c", "down", "down", "enter", "ctrl+u", *f"{z - 50:.3f}", "enter")
+        await press(pilot, "c", "down", "down", "enter", "ctrl+u", *f"{z - 50:.3f}", "enter")
         assert app.robot.kinematics.position(screen(app).q)[2] == pytest.approx(z - 50, abs=1e-3)
 
 
@@ -97,7 +98,7 @@ async def test_unreachable_step_moves_nothing_and_says_why():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         q = screen(app).q
-        await pilot.press("c", "enter", "ctrl+u", *"5000", "enter")
+        await press(pilot, "c", "enter", "ctrl+u", *"5000", "enter")
         assert screen(app).q == q
         assert "X:" in status(app) and ("reach" in status(app) or "limit" in status(app))
 
@@ -108,10 +109,10 @@ async def test_manipulability_warns_near_the_wrist_singularity():
         await go_start(pilot)
         text = str(app.screen.query_one(PosePanel).render())
         assert "μ" in text and "singular" in text
-        await pilot.press("down", "down", "down", "down")
+        await press(pilot, "down", "down", "down", "down")
         for _ in range(3):
-            await pilot.press("right_square_bracket")
-        await pilot.press("right")  # theta5 0.5 -> 45.5: away from it
+            await press(pilot, "right_square_bracket")
+        await press(pilot, "right")  # theta5 0.5 -> 45.5: away from it
         assert "singular" not in str(app.screen.query_one(PosePanel).render())
 
 
@@ -121,11 +122,11 @@ async def test_frames_below_the_floor_are_flagged():
     )
     app = DhsimApp(probe, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        assert "below the floor: frame 1" in str(app.screen.query_one(PosePanel).render())
         view = app.screen.query_one("#view-front")
+        await until(pilot, lambda: view.picture is not None, "the front view drawn")
+        assert "below the floor: frame 1" in str(app.screen.query_one(PosePanel).render())
         assert ROLE_INDEX["floor_hit"] in view.picture.roles  # the floor is drawn as hit
-        await pilot.press("enter", "ctrl+u", *"-10", "enter")  # back above the floor
+        await press(pilot, "enter", "ctrl+u", *"-10", "enter")  # back above the floor
         assert "below the floor" not in str(app.screen.query_one(PosePanel).render())
 
 
@@ -135,10 +136,10 @@ async def test_save_pose_writes_the_robot_file(tmp_path):
     save(robot, file)
     app = DhsimApp(load(file), file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "right", "P", "ctrl+u", *"mine", "enter")
+        await press(pilot, "right", "right", "P", "ctrl+u", *"mine", "enter")
         assert "pose mine saved in" in status(app)
-        await pilot.press("h")
-        await pilot.press(*["p"] * 5)  # the saved pose is last in the cycle
+        await press(pilot, "h")
+        await press(pilot, *["p"] * 5)  # the saved pose is last in the cycle
         assert screen(app).q == (2.0, 0, 0, 0, 0, 0)
     assert load(file).pose("mine") == (2.0, 0, 0, 0, 0, 0)
 
@@ -146,45 +147,45 @@ async def test_save_pose_writes_the_robot_file(tmp_path):
 async def test_save_pose_on_a_bundled_robot_keeps_it_in_memory():
     app = app_at()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "P", "ctrl+u", *"here", "enter")
+        await press(pilot, "right", "P", "ctrl+u", *"here", "enter")
         assert "kept until you quit" in status(app)
         assert app.robot.pose("here") == (1.0, 0, 0, 0, 0, 0)
 
 
 async def test_home_moves_smoothly_and_arrives(monkeypatch):
-    monkeypatch.setattr(
-        "dhsim_tui.core.motion.smooth.DURATION", 2.0
-    )  # slow enough for a busy machine
+    monkeypatch.setattr("dhsim_tui.core.motion.smooth.DURATION", 2.0)
+    passed = []  # where each tick of the move put Th1, however many the machine managed
+    tick = ControlScreen._tick
+
+    def recording_tick(self):
+        tick(self)
+        passed.append(self.q[0])
+
+    monkeypatch.setattr(ControlScreen, "_tick", recording_tick)
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")
-        await pilot.press("right", "right")  # Th1 at 90
-        await pilot.press("h")
-        assert screen(app).moving
-        middle = screen(app).q[0]
-        assert 0.0 < middle < 90.0  # on its way
-        for _ in range(100):
-            if not screen(app).moving:
-                break
-            await pilot.pause(0.05)
+        await press(pilot, "right_square_bracket", "right_square_bracket", "right_square_bracket")
+        await press(pilot, "right", "right")  # Th1 at 90
+        await press(pilot, "h")
+        await until(pilot, lambda: not screen(app).moving, "the move home to end")
         assert screen(app).q == app.robot.home
-        assert not screen(app).moving
+        assert any(0.0 < th1 < 90.0 for th1 in passed)  # it went there on its way, not at once
 
 
 async def test_escape_interrupts_a_move_and_m_turns_motion_off(monkeypatch):
     monkeypatch.setattr("dhsim_tui.core.motion.smooth.DURATION", 20.0)  # still moving when stopped
     app = app_at(animate=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right_square_bracket", "right_square_bracket", "right_square_bracket")
-        await pilot.press("right", "right", "h")
-        await pilot.pause(0.3)
-        await pilot.press("escape")
+        await press(pilot, "right_square_bracket", "right_square_bracket", "right_square_bracket")
+        await press(pilot, "right", "right", "h")
+        await until(pilot, lambda: screen(app).q[0] < 90.0, "the move home under way")
+        await press(pilot, "escape")
         stopped = screen(app).q[0]
         assert 0.0 < stopped < 90.0 and not screen(app).moving
         assert status(app) == "stopped"
-        await pilot.pause(0.5)
+        await frames_pass(pilot, 15)  # as many ticks as the move had in 0.5 s
         assert screen(app).q[0] == stopped  # it stays where it was stopped
-        await pilot.press("m", "h")
+        await press(pilot, "m", "h")
         assert screen(app).q == app.robot.home  # at once
 
 
@@ -201,7 +202,7 @@ async def test_save_pose_that_cannot_be_written_says_so(tmp_path, monkeypatch):
     monkeypatch.setattr(os, "replace", refuse)
     app = DhsimApp(load(file), file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "P", "ctrl+u", *"spot", "enter")
+        await press(pilot, "right", "P", "ctrl+u", *"spot", "enter")
         assert status(app).startswith("not saved:")
         assert "(pose spot is kept in memory)" in status(app)
         assert app.robot.pose("spot") == (501.0, 400.0, 300.0)

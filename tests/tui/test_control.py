@@ -8,6 +8,7 @@ import subprocess
 import sys
 
 import pytest
+from pilot_helpers import press, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.tui.app import DhsimApp
@@ -51,18 +52,18 @@ def pose_numbers(app: DhsimApp) -> dict[str, float]:
 async def test_right_left_and_shift_step_the_selected_joint():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "right", "shift+right")
+        await press(pilot, "right", "right", "shift+right")
         assert screen_of(app).q == (12.0, 0, 0, 0, 0, 0)
-        await pilot.press("down", "left", "shift+left")
+        await press(pilot, "down", "left", "shift+left")
         assert screen_of(app).q == (12.0, -11.0, 0, 0, 0, 0)
 
 
 async def test_up_down_select_and_wrap():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("up")
+        await press(pilot, "up")
         assert screen_of(app).query_one(JointPanel).selected == 5
-        await pilot.press("down", "down")
+        await press(pilot, "down", "down")
         assert screen_of(app).query_one(JointPanel).selected == 1
         rows = app.screen.query("JointRow")
         assert rows[1].has_class("-selected") and not rows[0].has_class("-selected")
@@ -71,23 +72,23 @@ async def test_up_down_select_and_wrap():
 async def test_step_size_ladder_changes_the_step_and_is_shown():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right_square_bracket", "right")
+        await press(pilot, "right_square_bracket", "right")
         assert screen_of(app).q[0] == 5.0
         assert "step 5 deg" in str(app.screen.query_one("#joints").border_subtitle)
         for _ in range(6):  # past the top of the ladder it stays at 45
-            await pilot.press("right_square_bracket")
-        await pilot.press("right")
+            await press(pilot, "right_square_bracket")
+        await press(pilot, "right")
         assert screen_of(app).q[0] == 50.0
         for _ in range(6):
-            await pilot.press("left_square_bracket")
-        await pilot.press("left")
+            await press(pilot, "left_square_bracket")
+        await press(pilot, "left")
         assert screen_of(app).q[0] == pytest.approx(49.9)
 
 
 async def test_prismatic_steps_use_the_robots_unit():
     app = make_app("stanford")
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("down", "down", "right", "right_square_bracket", "right")
+        await press(pilot, "down", "down", "right", "right_square_bracket", "right")
         assert screen_of(app).q[2] == pytest.approx(304.8 + 1 + 10)
         assert "step 10 mm" in str(app.screen.query_one("#joints").border_subtitle)
 
@@ -96,14 +97,14 @@ async def test_stepping_stops_at_the_limit_and_says_so():
     app = make_app()  # joint 1: -160..160
     async with app.run_test(size=(80, 24)) as pilot:
         for _ in range(3):
-            await pilot.press("right_square_bracket")  # 45 deg steps
+            await press(pilot, "right_square_bracket")  # 45 deg steps
         for _ in range(5):
-            await pilot.press("right")
+            await press(pilot, "right")
         assert screen_of(app).q[0] == 160.0
         assert "Th1 is at its max limit, 160 deg" in status(app)
         row = str(app.screen.query("JointRow")[0].render())
         assert "▶" in row.split("├")[1]  # the bar shows the limit
-        await pilot.press("left")
+        await press(pilot, "left")
         assert screen_of(app).q[0] == 115.0
         assert status(app) == ""
 
@@ -111,9 +112,9 @@ async def test_stepping_stops_at_the_limit_and_says_so():
 async def test_enter_sets_an_exact_value():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("down", "enter")
+        await press(pilot, "down", "enter")
         assert isinstance(app.screen, ValueEntry)
-        await pilot.press("ctrl+u", *"12.5", "enter")
+        await press(pilot, "ctrl+u", *"12.5", "enter")
         assert isinstance(app.screen, ControlScreen)
         assert screen_of(app).q[1] == 12.5
 
@@ -132,12 +133,18 @@ async def test_enter_sets_an_exact_value():
 async def test_enter_rejects_bad_values_and_changes_nothing(typed, message):
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("down", "enter", "ctrl+u", *typed, "enter")
-        await pilot.pause()  # the refusal is shown once the key has been handled
+        await press(pilot, "down", "enter", "ctrl+u", *typed, "enter")
+        await until(  # the refusal is shown once the key has been handled
+            pilot,
+            lambda: (
+                isinstance(app.screen, ValueEntry) and str(app.screen.query_one("#error").render())
+            ),
+            "the refusal",
+        )
         assert isinstance(app.screen, ValueEntry)
         assert message in str(app.screen.query_one("#error").render())
         assert app.screen.query_one("Input").value == typed  # kept, to be fixed
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, ControlScreen)
         assert screen_of(app).q == app.robot.home
 
@@ -145,12 +152,12 @@ async def test_enter_rejects_bad_values_and_changes_nothing(typed, message):
 async def test_home_key_and_h_send_every_joint_home():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "down", "right", "right")
+        await press(pilot, "right", "down", "right", "right")
         assert screen_of(app).q != app.robot.home
-        await pilot.press("h")
+        await press(pilot, "h")
         assert screen_of(app).q == app.robot.home
-        await pilot.press("right")
-        await pilot.press("home")
+        await press(pilot, "right")
+        await press(pilot, "home")
         assert screen_of(app).q == app.robot.home
 
 
@@ -160,7 +167,7 @@ async def test_p_cycles_the_named_poses():
     async with app.run_test(size=(80, 24)) as pilot:
         seen = []
         for _ in range(5):
-            await pilot.press("p")
+            await press(pilot, "p")
             seen.append(screen_of(app).q)
         assert seen == [robot.pose(n) for n in ("qz", "qr", "qs", "qn", "qz")]
         assert "pose qz (1/4)" in status(app)
@@ -169,7 +176,7 @@ async def test_p_cycles_the_named_poses():
 async def test_p_is_disabled_for_a_robot_without_poses():
     app = make_app("irb140")
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "p")
+        await press(pilot, "right", "p")
         assert screen_of(app).q[0] == 1.0
         assert screen_of(app).check_action("next_pose", ()) is None
 
@@ -179,12 +186,12 @@ async def test_v_cycles_oat_rpy_and_matrix():
     async with app.run_test(size=(80, 24)) as pilot:
         panel = app.screen.query_one(PosePanel)
         assert {"O", "A", "T"} <= set(pose_numbers(app))
-        await pilot.press("v")
+        await press(pilot, "v")
         assert {"roll", "pitch", "yaw"} <= set(pose_numbers(app))
-        await pilot.press("v")
+        await press(pilot, "v")
         text = str(panel.render())
         assert "431.80" in text and "0.0000" in text and "1.0000" in text
-        await pilot.press("v")
+        await press(pilot, "v")
         assert {"O", "A", "T"} <= set(pose_numbers(app))
 
 
@@ -196,8 +203,8 @@ async def test_screen_numbers_equal_dhsim_fk(q):
     async with app.run_test(size=(80, 24)) as pilot:
         for index, value in enumerate(q):
             if index:
-                await pilot.press("down")
-            await pilot.press("enter", "ctrl+u", *str(value), "enter")
+                await press(pilot, "down")
+            await press(pilot, "enter", "ctrl+u", *str(value), "enter")
         assert screen_of(app).q == tuple(float(v) for v in q)
         shown = pose_numbers(app)
     out = subprocess.run(
@@ -225,19 +232,22 @@ async def test_screen_numbers_equal_dhsim_fk(q):
 async def test_resize_keeps_joints_step_and_view():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "right_square_bracket", "3")
+        await press(pilot, "right", "right_square_bracket", "3")
         before = (
             screen_of(app).q,
             screen_of(app).step_level,
             screen_of(app).query_one(ViewsPanel).selected,
         )
         await pilot.resize_terminal(160, 48)
-        await pilot.pause()
-        assert app.screen.has_class("-wide")
-        assert all(v.display for v in app.screen.query(ArmView))
+        await until(pilot, lambda: app.screen.has_class("-wide"), "the wide layout")
+        await until(
+            pilot, lambda: all(v.display for v in app.screen.query(ArmView)), "all four views"
+        )
         await pilot.resize_terminal(80, 24)
-        await pilot.pause()
-        assert not app.screen.has_class("-wide")
+        await until(pilot, lambda: not app.screen.has_class("-wide"), "the narrow layout")
+        await until(
+            pilot, lambda: sum(v.display for v in app.screen.query(ArmView)) == 1, "one view"
+        )
         assert (
             screen_of(app).q,
             screen_of(app).step_level,
@@ -255,27 +265,25 @@ async def test_tab_and_number_keys_switch_views_at_80x24():
             return [v.view.key for v in app.screen.query(ArmView) if v.display]
 
         assert shown() == ["front"]
-        await pilot.press("tab")
+        await press(pilot, "tab")
         assert shown() == ["side"]
-        await pilot.press("1")
+        await press(pilot, "1")
         assert shown() == ["top"]
 
 
 async def test_too_small_terminal_shows_a_message():
     app = make_app()
     async with app.run_test(size=(40, 12)) as pilot:
-        await pilot.pause()
-        assert app.screen.has_class("-too-small")
+        await until(pilot, lambda: app.screen.has_class("-too-small"), "the too-small layout")
         assert "Terminal too small: 40×12" in str(app.screen.query_one("#too-small").render())
         await pilot.resize_terminal(80, 24)
-        await pilot.pause()
-        assert not app.screen.has_class("-too-small")
+        await until(pilot, lambda: not app.screen.has_class("-too-small"), "the usual layout")
 
 
 async def test_help_lists_keys_and_closes():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("question_mark")
+        await press(pilot, "question_mark")
         assert isinstance(app.screen, HelpScreen)
         text = " ".join(screen_text(app).split())
         for words in (
@@ -287,32 +295,31 @@ async def test_help_lists_keys_and_closes():
             "4×4",
         ):
             assert words in text
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, ControlScreen)
 
 
 async def test_q_quits():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("q")
+        await press(pilot, "q")
     assert app.return_code == 0
 
 
 async def test_views_redraw_when_a_joint_moves():
     app = make_app()
     async with app.run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
         top = app.screen.query_one("#view-top", ArmView)
+        await until(pilot, lambda: top.picture is not None, "the top view drawn")
         before = top.picture.lines
-        await pilot.press("right_square_bracket", "right_square_bracket", "right")
-        await pilot.pause()
+        await press(pilot, "right_square_bracket", "right_square_bracket", "right")
         assert top.picture.lines != before
 
 
 async def test_braille_renderer_draws_the_arm_without_axes():
     app = make_app(renderer="braille")
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right")
+        await press(pilot, "right")
         await pilot.pause()
         view = app.screen.query_one("#view-front", ArmView)
         assert view.scene is not None
@@ -324,8 +331,8 @@ async def test_every_bundled_robot_opens_and_steps(bundled):
     app = DhsimApp(bundled, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         for _ in range(bundled.dof):
-            await pilot.press("right", "down")
-        await pilot.press("h")
+            await press(pilot, "right", "down")
+        await press(pilot, "h")
         assert screen_of(app).q == bundled.home
 
 
@@ -335,12 +342,10 @@ async def test_rows_scroll_to_keep_the_selected_joint_in_view():
     robot = Robot("long arm", tuple(Joint(a=50.0) for _ in range(20)))
     app = DhsimApp(robot, None, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("up")  # wraps to joint 20
-        await pilot.pause()
+        await press(pilot, "up")  # wraps to joint 20
         panel = app.screen.query_one("#joints")
         row = app.screen.query("JointRow")[19]
+        await until(pilot, lambda: panel.region.contains_region(row.region), "joint 20 in view")
         assert panel.scroll_y > 0
-        assert panel.region.contains_region(row.region)
-        await pilot.press("down")  # back to joint 1
-        await pilot.pause()
-        assert panel.scroll_y == 0
+        await press(pilot, "down")  # back to joint 1
+        await until(pilot, lambda: panel.scroll_y == 0, "joint 1 in view")

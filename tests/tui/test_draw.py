@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from conftest import reference_frames
+from pilot_helpers import palette_searching, press, started, until
 
 from dhsim_tui.cli.main import main
 from dhsim_tui.core import load_robot
@@ -168,8 +169,8 @@ async def test_i_saves_the_screen_as_an_svg_in_the_working_folder(tmp_path, monk
     monkeypatch.chdir(tmp_path)
     app = _app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
-        await pilot.press("i")
+        await started(pilot)
+        await press(pilot, "i")
         await pilot.pause()
         (picture,) = list(tmp_path.glob("dhsim-Puma_560-*.svg"))
         root = ET.parse(picture).getroot()
@@ -177,7 +178,7 @@ async def test_i_saves_the_screen_as_an_svg_in_the_working_folder(tmp_path, monk
         assert "Th1" in picture.read_text(encoding="utf-8")  # what the screen showed
         status = str(app.screen.query_one("#status").render())
         assert f"picture saved: {picture.resolve()}" in status
-        await pilot.press("i")  # again in the same second: a new name, nothing replaced
+        await press(pilot, "i")  # again in the same second: a new name, nothing replaced
         await pilot.pause()
         assert len(list(tmp_path.glob("dhsim-Puma_560-*.svg"))) == 2
 
@@ -189,8 +190,8 @@ async def test_a_picture_that_cannot_be_written_says_why(tmp_path, monkeypatch):
     gone.rmdir()  # the working folder was removed under us
     app = _app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("i")
+        await started(pilot)
+        await press(pilot, "i")
         await pilot.pause()
         status = app.screen.query_one("#status")
         assert "picture not saved" in str(status.render()) and status.has_class("-error")
@@ -201,22 +202,21 @@ async def test_the_palette_finds_save_picture(query, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     app = _app()
     async with app.run_test(size=(100, 30)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+p")
+        await started(pilot)
+        await press(pilot, "ctrl+p")
         await pilot.pause()
         assert isinstance(app.screen, DhsimPalette)
-        await pilot.press(*query)
-        for _ in range(40):
-            await pilot.pause(0.05)
-            shown = [
+        await press(pilot, *query)
+
+        def shown() -> list[str]:
+            return [
                 str(option.prompt) for option in app.screen.query("CommandList").first().options
             ]
-            if shown:
-                break
-        assert shown and SAVE_PICTURE in shown[0]
-        await pilot.press("enter")
-        await pilot.pause()
-        assert list(tmp_path.glob("dhsim-*.svg"))
+
+        await until(pilot, lambda: shown() and not palette_searching(app), "the palette's search")
+        assert SAVE_PICTURE in shown()[0]
+        await press(pilot, "enter")
+        await until(pilot, lambda: list(tmp_path.glob("dhsim-*.svg")), "the picture saved")
 
 
 def test_every_screenshot_mode_differs(request):

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from pilot_helpers import showing
+from pilot_helpers import press, showing, started
 
 from dhsim_tui.core import dumps, load, load_robot, loads, save
 from dhsim_tui.core.model.editing import new_robot
@@ -46,7 +46,7 @@ def error_text(app: DhsimApp) -> str:
 
 
 async def type_in(pilot, text: str) -> None:
-    await pilot.press("ctrl+u", *text, "enter")
+    await press(pilot, "ctrl+u", *text, "enter")
     await pilot.pause()  # the edit lands (or is refused) once the key is handled
 
 
@@ -55,30 +55,30 @@ async def edit_cell(pilot, row: int, column: int, text: str) -> None:
     table = editor(pilot.app).query_one("#joints-table")
     table.focus()
     table.move_cursor(row=row, column=column)
-    await pilot.press("enter")
+    await press(pilot, "enter")
     await type_in(pilot, text)
 
 
 async def test_edit_a_cell_and_undo_redo():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         original = editor(app).robot
         await edit_cell(pilot, 2, 5, "-45")  # joint 3 alpha
         assert editor(app).robot.joints[2].alpha == -45.0
         assert editor(app).dirty
         await edit_cell(pilot, 1, 4, "400")  # joint 2 a
         assert editor(app).robot.joints[1].a == 400.0
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         assert editor(app).robot.joints[1].a == 431.8
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         assert editor(app).robot == original
         assert not editor(app).dirty
-        await pilot.press("ctrl+y", "ctrl+y")
+        await press(pilot, "ctrl+y", "ctrl+y")
         assert editor(app).robot.joints[2].alpha == -45.0
         assert editor(app).robot.joints[1].a == 400.0
         assert editor(app).check_action("redo", ()) is None  # greyed: nothing to redo
-        await pilot.press("ctrl+y")
+        await press(pilot, "ctrl+y")
         assert editor(app).robot.joints[1].a == 400.0
 
 
@@ -103,12 +103,12 @@ async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tm
     before = file.read_bytes()
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, column, typed)
         assert isinstance(app.screen, ValueEntry)
         assert message in error_text(app)
         assert app.screen.query_one("Input").value == typed  # kept to be fixed
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert editor(app).robot == robot
         assert not editor(app).dirty
     assert file.read_bytes() == before
@@ -117,7 +117,7 @@ async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tm
 async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         before = editor(app).robot
         await edit_cell(pilot, 1, 6, "-90")  # joint 2 offset
         robot = editor(app).robot
@@ -135,15 +135,15 @@ async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same()
 async def test_toggle_type_moves_the_variable():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         table = editor(app).query_one("#joints-table")
         table.move_cursor(row=2, column=3)
-        await pilot.press("t")
+        await press(pilot, "t")
         joint = editor(app).robot.joints[2]
         assert joint.type == "prismatic" and joint.home == 150.05
         assert (joint.min, joint.max) == (-400.0, 400.0)
         table.move_cursor(row=2, column=1)
-        await pilot.press("enter")  # enter on the type column toggles too
+        await press(pilot, "enter")  # enter on the type column toggles too
         assert editor(app).robot.joints[2].type == "revolute"
         assert editor(app).robot.joints[2].min == -180.0
 
@@ -151,31 +151,31 @@ async def test_toggle_type_moves_the_variable():
 async def test_add_delete_and_move_joints():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         robot = editor(app).robot
         table = editor(app).query_one("#joints-table")
         table.move_cursor(row=1)
-        await pilot.press("a")
+        await press(pilot, "a")
         assert editor(app).robot.dof == 7
         assert editor(app).robot.joints[2].a == 0.0  # inserted after the cursor
         assert all(len(v) == 7 for _, v in editor(app).robot.poses)
-        await pilot.press("insert")
+        await press(pilot, "insert")
         assert editor(app).robot.dof == 8
-        await pilot.press("d")
+        await press(pilot, "d")
         assert isinstance(app.screen, Confirm)
-        await pilot.press("n")
+        await press(pilot, "n")
         assert editor(app).robot.dof == 8
-        await pilot.press("delete", "y")
+        await press(pilot, "delete", "y")
         assert editor(app).robot.dof == 7
-        await pilot.press("ctrl+z", "ctrl+z", "ctrl+z")
+        await press(pilot, "ctrl+z", "ctrl+z", "ctrl+z")
         assert editor(app).robot == robot
         table.move_cursor(row=0)
-        await pilot.press("ctrl+down")
+        await press(pilot, "ctrl+down")
         assert editor(app).robot.joints[1] == robot.joints[0]
         assert editor(app).robot.pose("qr")[:2] == (90.0, 0.0)
-        await pilot.press("ctrl+up")
+        await press(pilot, "ctrl+up")
         assert editor(app).robot == robot
-        await pilot.press("ctrl+up")
+        await press(pilot, "ctrl+up")
         assert "already at the end" in status(app)
 
 
@@ -183,12 +183,12 @@ async def test_joint_count_stays_within_1_and_32():
     one = new_robot("one", 1)
     app = editor_app(one, None)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("d")
+        await started(pilot)
+        await press(pilot, "d")
         assert "at least 1 joint" in status(app)
         assert editor(app).robot.dof == 1
         for _ in range(35):
-            await pilot.press("a")
+            await press(pilot, "a")
         assert editor(app).robot.dof == 32
         assert "at most 32 joints" in status(app)
 
@@ -196,13 +196,13 @@ async def test_joint_count_stays_within_1_and_32():
 async def test_robot_fields(in_tmp):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         fields = editor(app).query_one("#fields-table")
         fields.focus()
 
         async def pick(row):
             fields.move_cursor(row=row)
-            await pilot.press("enter")
+            await press(pilot, "enter")
             await pilot.pause()  # the field's dialog is open
 
         await pick(0)
@@ -211,15 +211,15 @@ async def test_robot_fields(in_tmp):
         await pick(0)
         await type_in(pilot, "   ")
         assert "non-empty name" in error_text(app)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await pick(1)  # units -> m converts lengths
         assert isinstance(app.screen, Choice)
-        await pilot.press("down", "down", "enter")
+        await press(pilot, "down", "down", "enter")
         robot = editor(app).robot
         assert robot.units == "m" and robot.joints[1].a == pytest.approx(0.4318)
         assert robot.base_height == pytest.approx(0.67183)
         await pick(2)
-        await pilot.press("down", "enter")
+        await press(pilot, "down", "enter")
         assert editor(app).robot.convention == "modified"
         await pick(3)
         await type_in(pilot, "-1")
@@ -227,7 +227,7 @@ async def test_robot_fields(in_tmp):
         await type_in(pilot, "0.25")
         assert editor(app).robot.base_height == 0.25
         await pick(4)  # base z: -z (the list starts on the current +z); base x stays +x
-        await pilot.press("down", "enter")
+        await press(pilot, "down", "enter")
         assert (editor(app).robot.base_z, editor(app).robot.base_x) == ("-z", "+x")
         await pick(5)  # base x offers only axes perpendicular to z
         options = app.screen.query_one("OptionList")
@@ -237,7 +237,7 @@ async def test_robot_fields(in_tmp):
             "+y",
             "-y",
         ]
-        await pilot.press("down", "down", "enter")
+        await press(pilot, "down", "down", "enter")
         assert editor(app).robot.base_x == "+y"
         await pick(6)  # base xyz: frame 0 moves, in the robot's unit
         await type_in(pilot, "0.1, 0, 0")
@@ -258,21 +258,21 @@ async def test_robot_fields(in_tmp):
 async def test_poses_add_edit_delete():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         fields = editor(app).query_one("#fields-table")
         fields.focus()
-        await pilot.press("a")
+        await press(pilot, "a")
         await type_in(pilot, "qz")
         assert "already a pose named 'qz'" in error_text(app)
         await type_in(pilot, "mine")
         assert editor(app).robot.pose("mine") == editor(app).robot.home
         fields.move_cursor(row=fields.row_count - 1)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await type_in(pilot, "0, 0, 0, 300, 0, 0")
         assert "Th4 = 300 deg is outside its limits" in error_text(app)
         await type_in(pilot, "0, 10, 20, 30, 40, 50")
         assert editor(app).robot.pose("mine") == (0, 10, 20, 30, 40, 50)
-        await pilot.press("d", "y")
+        await press(pilot, "d", "y")
         assert "mine" not in editor(app).robot.pose_names
 
 
@@ -280,7 +280,7 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
     """The issue's 'done when': the seed's SCARA from nothing, all by keyboard."""
     app = DhsimApp(new_robot("my scara"), None, start="new")
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, ValueEntry)
         await type_in(pilot, "0")
         assert "whole number from 1 to 32" in error_text(app)
@@ -290,18 +290,18 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
         await edit_cell(pilot, 1, 4, "250")
         await edit_cell(pilot, 1, 5, "180")
         editor(app).query_one("#joints-table").move_cursor(row=2)
-        await pilot.press("t")
+        await press(pilot, "t")
         await edit_cell(pilot, 2, 7, "200")
         await edit_cell(pilot, 2, 6, "0")
         fields = editor(app).query_one("#fields-table")
         fields.focus()
         fields.move_cursor(row=3)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await type_in(pilot, "250")
         robot = editor(app).robot
         assert robot.type_string == "RRPR" and robot.base_height == 250
         assert editor(app).query_one("#preview").views[1].scene is not None
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await type_in(pilot, "../evil")
         assert "slash" in error_text(app)
         await type_in(pilot, "..")
@@ -313,16 +313,16 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
         assert load(saved) == robot
         assert not editor(app).dirty
         # reopen it, change one alpha, undo
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         assert isinstance(app.screen, OpenRobot)
         app.screen.query_one("#path").focus()
         await type_in(pilot, str(saved))
         assert editor(app).robot == robot
         await edit_cell(pilot, 1, 5, "0")
         assert editor(app).robot.joints[1].alpha == 0.0
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         assert editor(app).robot.joints[1].alpha == 180.0
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, ControlScreen)
         assert app.screen.robot == robot  # the simulator runs the saved robot
     assert load(saved) == robot
@@ -333,15 +333,15 @@ async def test_open_a_bad_file_keeps_the_robot(in_tmp):
     bad.write_text('name = "x"\n[[joints]]\nalhpa = 1\n')
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         robot = editor(app).robot
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         app.screen.query_one("#path").focus()
         await type_in(pilot, str(bad))
         assert "joints[1].alhpa: unknown key (did you mean 'alpha'?)" in error_text(app)
         await type_in(pilot, str(in_tmp / "missing.toml"))
         assert "no such file" in error_text(app)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert editor(app).robot == robot
 
 
@@ -351,10 +351,10 @@ async def test_open_lists_robots_in_the_folder(in_tmp):
     save(gantry, in_tmp / "robots" / "a_gantry.toml")
     app = editor_app()
     async with app.run_test(size=(120, 40)) as pilot:
+        await started(pilot)
+        await press(pilot, "ctrl+o")
         await pilot.pause()
-        await pilot.press("ctrl+o")
-        await pilot.pause()
-        await pilot.press("enter")  # the first entry: ./robots/a_gantry.toml
+        await press(pilot, "enter")  # the first entry: ./robots/a_gantry.toml
         assert editor(app).robot == gantry
         assert editor(app).path == Path("robots/a_gantry.toml")
 
@@ -366,16 +366,16 @@ async def test_saving_over_another_file_asks_first(in_tmp):
     before = other.read_bytes()
     app = editor_app(new_robot("other", 2), None)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+s")
+        await started(pilot)
+        await press(pilot, "ctrl+s")
         await type_in(pilot, "other")
         assert isinstance(app.screen, Confirm)
-        await pilot.press("n")
+        await press(pilot, "n")
         assert other.read_bytes() == before
         assert "not saved" in status(app)
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await type_in(pilot, "other")
-        await pilot.press("y")
+        await press(pilot, "y")
         assert load(other) == editor(app).robot
 
 
@@ -383,10 +383,10 @@ async def test_failed_save_loses_nothing(in_tmp):
     (in_tmp / "robots").write_text("a file where the folder should be")
     app = editor_app(new_robot("keep me", 3), None)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "100")
         robot = editor(app).robot
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await type_in(pilot, "keep_me")
         assert "not saved" in status(app)
         assert editor(app).robot == robot and editor(app).dirty
@@ -406,9 +406,9 @@ async def test_failed_save_to_a_read_only_file_keeps_the_old_file(in_tmp, monkey
     monkeypatch.setattr(os, "replace", refuse)  # what a read-only folder does to the rename
     app = editor_app(robot, file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "10")
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         assert "not saved" in status(app) and "permission denied" in status(app)
         assert editor(app).dirty
     assert file.read_bytes() == before
@@ -422,13 +422,13 @@ async def test_unsaved_changes_guard(key, in_tmp):
     save(robot, file)
     app = editor_app(robot, file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "10")
-        await pilot.press(key)
+        await press(pilot, key)
         assert await showing(pilot, SaveGuard)  # the guard is a worker's dialog
-        await pilot.press("escape")  # stay
+        await press(pilot, "escape")  # stay
         assert await showing(pilot, EditorScreen) and editor(app).dirty
-        await pilot.press(key, "d")  # discard
+        await press(pilot, key, "d")  # discard
         if key == "escape":
             assert await showing(pilot, ControlScreen)
             assert app.screen.robot == robot
@@ -440,10 +440,10 @@ async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp):
     save(new_robot("arm", 2), file)
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "10")
         edited = editor(app).robot
-        await pilot.press("escape", "s")
+        await press(pilot, "escape", "s")
         assert isinstance(app.screen, ControlScreen)
         assert app.screen.robot == edited
     assert load(file) == edited
@@ -455,11 +455,11 @@ async def test_bundled_robots_are_templates(name, in_tmp):
     robot, path = load_robot(name)
     app = editor_app(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+s")
+        await started(pilot)
+        await press(pilot, "ctrl+s")
         assert isinstance(app.screen, ValueEntry)
         assert app.screen.query_one("Input").value == name
-        await pilot.press("enter")
+        await press(pilot, "enter")
         saved = in_tmp / "robots" / f"{name}.toml"
         assert loads(saved.read_text()) == editor(app).robot
         assert editor(app).path == Path("robots") / f"{name}.toml"
@@ -469,15 +469,15 @@ async def test_control_screen_e_opens_the_editor():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("e")
+        await press(pilot, "e")
         assert isinstance(app.screen, EditorScreen)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, ControlScreen)
 
 
 async def test_editor_at_160x48_shows_three_views():
     app = editor_app()
     async with app.run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert editor(app).has_class("-wide")
         assert all(v.display for v in editor(app).query_one("#preview").views)

@@ -4,7 +4,7 @@ a file name, a question before replacing a file, and where it went."""
 from __future__ import annotations
 
 import pytest
-from pilot_helpers import showing, until
+from pilot_helpers import press, showing, until
 from textual.command import CommandList, CommandPalette
 
 from dhsim_tui.core import load_robot
@@ -44,11 +44,11 @@ def status(app: DhsimApp) -> str:
 
 
 async def choose_format(pilot, fmt: str) -> None:
-    await pilot.press("x")
+    await press(pilot, "x")
     assert await showing(pilot, Choice)
     for _ in range(EXPORT_FORMATS.index(fmt)):
-        await pilot.press("down")
-    await pilot.press("enter")
+        await press(pilot, "down")
+    await press(pilot, "enter")
     assert await showing(pilot, ValueEntry)
 
 
@@ -57,13 +57,13 @@ async def test_x_exports_what_export_text_gives(in_tmp, fmt):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
-        await pilot.press("t")  # an unsaved edit: exported as it is here
+        await press(pilot, "t")  # an unsaved edit: exported as it is here
         await until(pilot, lambda: editor(app).dirty, "the edit")
         robot = editor(app).robot
         await choose_format(pilot, fmt)
         suffix = {"urdf": ".urdf", "csv": ".csv", "json": ".json"}[fmt]
         assert app.screen.query_one("Input").value == f"robots/puma560{suffix}"
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await until(pilot, lambda: status(app).startswith("exported"), "the export")
         assert await showing(pilot, EditorScreen)
         written = in_tmp / "robots" / f"puma560{suffix}"
@@ -80,16 +80,16 @@ async def test_an_existing_file_is_replaced_only_when_confirmed(in_tmp):
     async with app.run_test(size=(80, 24)) as pilot:
         robot = (await editor_up(pilot)).robot
         await choose_format(pilot, "csv")
-        await pilot.press("ctrl+u", *"robots/mine", "enter")  # .csv is added
+        await press(pilot, "ctrl+u", *"robots/mine", "enter")  # .csv is added
         assert await showing(pilot, Confirm)
-        await pilot.press("n")
+        await press(pilot, "n")
         await until(pilot, lambda: status(app).startswith("not exported"), "the answer")
         assert target.read_text() == "keep me\n"
         assert status(app) == "not exported: robots/mine.csv is left as it was"
         await choose_format(pilot, "csv")
-        await pilot.press("ctrl+u", *"robots/mine.csv", "enter")
+        await press(pilot, "ctrl+u", *"robots/mine.csv", "enter")
         assert await showing(pilot, Confirm)
-        await pilot.press("y")
+        await press(pilot, "y")
         await until(pilot, lambda: status(app).startswith("exported"), "the export")
         assert target.read_text() == export_text(robot, "csv")
 
@@ -99,16 +99,16 @@ async def test_a_wrong_suffix_or_a_failure_is_said_and_writes_nothing(in_tmp):
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
         await choose_format(pilot, "urdf")
-        await pilot.press("ctrl+u", *"robots/arm.csv", "enter")
+        await press(pilot, "ctrl+u", *"robots/arm.csv", "enter")
         await until(pilot, lambda: str(app.screen.query_one("#error").render()), "the error")
         assert await showing(pilot, ValueEntry)  # fix it or escape
         error = str(app.screen.query_one("#error").render())
         assert "a URDF file's name ends in .urdf, not .csv" in error
-        await pilot.press("ctrl+u", *"no/such/folder/arm", "enter")
+        await press(pilot, "ctrl+u", *"no/such/folder/arm", "enter")
         await until(pilot, lambda: status(app).startswith("not exported: "), "the failure")
         assert await showing(pilot, EditorScreen)
         assert status(app).endswith("— no/such/folder/arm.urdf")
-        await pilot.press("x", "escape")
+        await press(pilot, "x", "escape")
         await until(pilot, lambda: status(app) == "not exported", "the cancel")
     assert not (in_tmp / "robots").exists() and not (in_tmp / "no").exists()
 
@@ -118,9 +118,9 @@ async def test_export_from_the_simulator_by_the_palette(in_tmp):
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, ControlScreen) and app.screen._ready)
-        await pilot.press("ctrl+p")
+        await press(pilot, "ctrl+p")
         await until(pilot, lambda: CommandPalette.is_open(app), "the palette")
-        await pilot.press(*"export")
+        await press(pilot, *"export")
 
         def found() -> bool:
             options = app.screen.query_one(CommandList)
@@ -129,11 +129,11 @@ async def test_export_from_the_simulator_by_the_palette(in_tmp):
             )
 
         await until(pilot, found, "the export command")
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert await showing(pilot, Choice)
-        await pilot.press("down", "enter")  # csv
+        await press(pilot, "down", "enter")  # csv
         assert await showing(pilot, ValueEntry)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         written = in_tmp / "robots" / "puma560.csv"
         await until(pilot, written.exists, "the export")
         assert await showing(pilot, ControlScreen)

@@ -5,7 +5,7 @@ landed under a dialog, or twice, took the simulator away)."""
 from __future__ import annotations
 
 import pytest
-from pilot_helpers import until
+from pilot_helpers import press, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.tui.app import DhsimApp
@@ -21,15 +21,15 @@ async def test_a_leave_under_a_dialog_or_twice_keeps_the_simulator():
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
-        await pilot.press("e")
+        await press(pilot, "e")
         await until(pilot, lambda: isinstance(app.screen, EditorScreen), "the editor")
         editor = app.screen
-        await pilot.press("question_mark")
+        await press(pilot, "question_mark")
         await until(pilot, lambda: isinstance(app.screen, HelpScreen), "the help")
         editor.dismiss(None)  # as a leave worker that finishes under the help
         await pilot.pause()
         assert isinstance(app.screen, HelpScreen) and editor in app.screen_stack
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await until(pilot, lambda: app.screen is editor, "the editor again")
         editor.dismiss(None)
         editor.dismiss(None)  # a second leave: nothing

@@ -12,6 +12,7 @@ import re
 from pathlib import Path
 
 import pytest
+from pilot_helpers import dialog_workers, press, settled, showing, started, until
 from textual import events, work
 from textual.app import App
 from textual.containers import Vertical
@@ -90,7 +91,7 @@ async def edit_cell(pilot, row: int, column: int, text: str) -> None:
     table = editor(pilot.app).query_one("#joints-table")
     table.focus()
     table.move_cursor(row=row, column=column)
-    await pilot.press("enter", "ctrl+u", *text, "enter")
+    await press(pilot, "enter", "ctrl+u", *text, "enter")
     await pilot.pause()
 
 
@@ -111,7 +112,7 @@ def test_numbers_are_never_shortened():
 async def test_cells_show_the_whole_value_after_each_edit():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "70.125")
         text = "\n".join(screen_lines(app))
         assert " 70.125 " in text
@@ -120,12 +121,12 @@ async def test_cells_show_the_whole_value_after_each_edit():
         fields = editor(app).query_one("#fields-table")
         fields.focus()
         fields.move_cursor(row=1)
-        await pilot.press("enter", "down", "down", "enter")  # units: mm -> m
+        await press(pilot, "enter", "down", "down", "enter")  # units: mm -> m
         await pilot.pause()
         text = "\n".join(screen_lines(app))
         for shown in ("0.070125", "0.1234567891", "0.15005", "0.4318"):
             assert f" {shown} " in text, shown
-        await pilot.press("ctrl+z", "ctrl+z")  # back to 431.8: the column shrinks again
+        await press(pilot, "ctrl+z", "ctrl+z")  # back to 431.8: the column shrinks again
         await pilot.pause()
         table = editor(app).query_one("#joints-table")
         widths = {c.label.plain: c.width for c in table.columns.values()}
@@ -136,11 +137,11 @@ async def test_ur5_in_metres_shows_every_digit():
     robot, path = load_robot("ur5")
     app = editor_app(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         fields = editor(app).query_one("#fields-table")
         fields.focus()
         fields.move_cursor(row=1)
-        await pilot.press("enter", "down", "down", "enter")
+        await press(pilot, "enter", "down", "down", "enter")
         await pilot.pause()
         assert editor(app).robot.units == "m"
         assert " 0.089459 " in "\n".join(screen_lines(app))
@@ -151,14 +152,13 @@ async def test_a_wide_table_scrolls_instead_of_cutting():
     robot = set_joint_field(robot, 0, "d", -98765.4321012)
     app = editor_app(robot, None)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         table = editor(app).query_one("#joints-table")
         assert table.virtual_size.width > table.scrollable_content_region.width
         text = "\n".join(screen_lines(app))
         assert "-98765.4321012" in text and "123456.78901234" in text
         table.move_cursor(row=0, column=8)  # max: off the right edge until scrolled
-        await pilot.pause()
-        assert table.scroll_x > 0
+        await until(pilot, lambda: table.scroll_x > 0, "the table scrolled")
         assert " 180 " in screen_lines(app)[table.region.y + 3]
 
 
@@ -168,9 +168,9 @@ async def test_the_unsaved_changes_question_is_shown_whole(size, in_tmp):
     save(new_robot("a robot with a rather long name, as people write them", 2), file)
     app = editor_app(load(file), file)
     async with app.run_test(size=size) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "10")
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await pilot.pause()
         assert isinstance(app.screen, SaveGuard)
         text = flat(region_text(app, app.screen.query_one(Vertical)))
@@ -196,10 +196,10 @@ async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch
 
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "10")
         monkeypatch.setattr(os, "replace", refuse)
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
         monkeypatch.undo()
         shown = status_shown_whole(app)
@@ -229,9 +229,9 @@ async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatc
 
     monkeypatch.setattr(ValueEntry, "compose", compose_while_keys_arrive)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         editor(app).query_one("#joints-table").move_cursor(row=1, column=4)  # joint 2 a
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await pilot.pause()
         await pilot.pause()
         assert typed, "the dialog was not opened"
@@ -245,17 +245,13 @@ async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatc
 async def test_after_a_burst_the_table_and_preview_show_the_final_robot():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         editor(app).query_one("#joints-table").move_cursor(row=2, column=0)
+        workers = dialog_workers(app)
         for _ in range(301):
             app.post_message(events.Key("t", "t"))
-        await pilot.pause()
-        for _ in range(300):  # up to 30 s under load: the keys are handed on one at a time
-            if not app.keys_waiting:
-                break
-            await pilot.pause(0.1)
-        await pilot.pause()
-        await pilot.pause(0.2)  # the burst's last draw
+        # the keys are handed on one at a time; then the burst's last draw
+        await until(pilot, lambda: settled(app, workers), "301 presses of t handled and drawn")
         final = editor(app).robot
         assert final.joints[2].type == "prismatic"
         table = editor(app).query_one("#joints-table")
@@ -274,10 +270,11 @@ async def test_after_a_burst_the_table_and_preview_show_the_final_robot():
 async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
+        await until(pilot, lambda: "esc Back" in screen_lines(app)[-1], "the footer")
         footer = screen_lines(app)[-1]
         assert "esc Back" in footer and "? Help" in footer and "^s Save" in footer
-        await pilot.press("q")
+        await press(pilot, "q")
         assert isinstance(app.screen, EditorScreen)
         assert status_shown_whole(app) == QUIT_HINT
 
@@ -285,7 +282,7 @@ async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
 async def test_column_headers_show_units():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         table = editor(app).query_one("#joints-table")
         header = screen_lines(app)[table.region.y + 1 : table.region.y + 3]
         assert re.search(r"theta.*d.*a.*alpha", header[0])
@@ -308,17 +305,17 @@ def test_limit_units_follow_the_joint_types():
 async def test_undo_and_redo_say_what_they_changed():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 1, 5, "90")  # joint 2 alpha 0 -> 90
         status = editor(app).query_one("#editor-status")
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         await pilot.pause()
         assert region_text(app, status) == "undid: joint 2 alpha 90 -> 0"
-        await pilot.press("ctrl+y")
+        await press(pilot, "ctrl+y")
         await pilot.pause()
         assert region_text(app, status) == "redid: joint 2 alpha 0 -> 90"
         editor(app).query_one("#joints-table").move_cursor(row=0)
-        await pilot.press("t", "ctrl+z")
+        await press(pilot, "t", "ctrl+z")
         await pilot.pause()
         assert region_text(app, status) == "undid: joint 1 prismatic -> revolute"
 
@@ -349,19 +346,19 @@ async def test_file_names_with_escape_sequences_are_shown_escaped(in_tmp):
     save(new_robot("fine", 2), evil)
     app = editor_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+o")
+        await started(pilot)
+        await press(pilot, "ctrl+o")
         await pilot.pause()
         text = "\n".join(screen_lines(app))
         assert "a\\x1b[2J\\x1b]0;owned\\x07\\u202e.toml" in text
         app.screen.query_one("#path").value = str(in_tmp / "gone\x1b[2J.toml")
         app.screen.query_one("#path").focus()
-        await pilot.press("enter")
+        await press(pilot, "enter")
         error = str(app.screen.query_one("#error").render())
         assert "gone\\x1b[2J.toml" in error and "no such file" in error
-        await pilot.press("tab")
+        await press(pilot, "tab")
         app.screen.query_one("OptionList").focus()
-        await pilot.press("enter")  # the evil file opens; its name is escaped everywhere
+        await press(pilot, "enter")  # the evil file opens; its name is escaped everywhere
         await pilot.pause()
         text = "\n".join(screen_lines(app))
         assert "\\x1b" in text
@@ -381,8 +378,8 @@ async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch):
     monkeypatch.setattr(Path, "iterdir", iterdir)
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+o")
+        await started(pilot)
+        await press(pilot, "ctrl+o")
         await pilot.pause()
         assert isinstance(app.screen, OpenRobot)
         error = str(app.screen.query_one("#error").render())
@@ -393,13 +390,13 @@ async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch):
 async def test_a_path_longer_than_255_bytes_is_a_message(in_tmp):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+o")
+        await started(pilot)
+        await press(pilot, "ctrl+o")
         await pilot.pause()
         path = app.screen.query_one("#path")
         path.value = str(in_tmp / ("x" * 300 + ".toml"))
         path.focus()
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert isinstance(app.screen, OpenRobot)
         error = flat(region_text(app, app.screen.query_one("#error")))
         assert error.startswith("cannot open: cannot read: File name too long — ")
@@ -415,19 +412,19 @@ async def test_a_deleted_working_folder_is_a_message(in_tmp, monkeypatch):
     robot = load(relative)
     app = DhsimApp(robot, relative, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         (work / "robots" / "arm.toml").unlink()
         (work / "robots").rmdir()
         work.rmdir()
-        await pilot.press("e")  # used to raise FileNotFoundError from Path.cwd()
+        await press(pilot, "e")  # used to raise FileNotFoundError from Path.cwd()
         await pilot.pause()
         assert isinstance(app.screen, EditorScreen)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         await pilot.pause()
         assert isinstance(app.screen, OpenRobot)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await edit_cell(pilot, 0, 4, "10")
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
         shown = status_shown_whole(app)
         assert shown.startswith("not saved:") and shown.endswith("— robots/arm.toml")
@@ -462,7 +459,7 @@ async def _changed_on_disk(in_tmp, pilot) -> tuple[Path, bytes]:
     other = set_joint_field(load(file), 1, "a", 77.0)
     save(other, file)
     outside = file.read_bytes()
-    await pilot.press("ctrl+s")
+    await press(pilot, "ctrl+s")
     await pilot.pause()
     assert isinstance(pilot.app.screen, FileChanged)
     text = flat(region_text(pilot.app, pilot.app.screen.query_one(Vertical)))
@@ -477,10 +474,10 @@ async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         file, outside = await _changed_on_disk(in_tmp, pilot)
         mine = editor(app).robot
-        await pilot.press(answer)
+        await press(pilot, answer)
         await pilot.pause()
         assert isinstance(app.screen, EditorScreen)
         on_disk = load(file)
@@ -493,7 +490,7 @@ async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
             assert on_disk.joints[1].a == 77.0 and robot.joints[1].a == 77.0
             assert robot.joints[0].a == 111.0 and editor(app).dirty
             assert "your edits on top" in status_shown_whole(app)
-            await pilot.press("ctrl+z")  # undo takes out only my edit
+            await press(pilot, "ctrl+z")  # undo takes out only my edit
             assert editor(app).robot == on_disk and not editor(app).dirty
         else:
             assert file.read_bytes() == outside
@@ -510,34 +507,27 @@ async def test_reload_asks_about_a_value_both_changed_naming_it_and_both_values(
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 8, "150")
         theirs = set_joint_field(load(file), 0, "max", 155.0)
         theirs = set_joint_field(theirs, 1, "min", -120.0)
         save(theirs, file)
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
         assert isinstance(app.screen, FileChanged)
-        await pilot.press("r")
-        for _ in range(50):
-            await pilot.pause(0.02)
-            if isinstance(app.screen, Choice):
-                break
-        assert isinstance(app.screen, Choice)
+        await press(pilot, "r")
+        assert await showing(pilot, Choice)
         text = flat(region_text(app, app.screen.query_one(Vertical)))
         assert "joint 1 max" in text and "keep yours: 150" in text
         assert "keep the file's: 155" in text
         if keep == "theirs":
-            await pilot.press("down")
-        await pilot.press("enter")
-        for _ in range(50):
-            await pilot.pause(0.02)
-            if isinstance(app.screen, EditorScreen):
-                break
+            await press(pilot, "down")
+        await press(pilot, "enter")
+        assert await showing(pilot, EditorScreen)
         robot = editor(app).robot
         assert robot.joints[1].min == -120.0  # theirs, never asked about
         assert robot.joints[0].max == (150.0 if keep == "mine" else 155.0)
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         assert editor(app).robot == load(file)  # back to the file's, not before it
 
 
@@ -546,9 +536,9 @@ async def test_overwrite_keeps_the_comments(in_tmp):
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "111")
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
     text = file.read_text()
     assert "# my arm: keep this comment" in text and "# the upper arm" in text
@@ -562,22 +552,22 @@ async def test_read_only_file_is_refused_and_save_as_works(in_tmp):
     before = file.read_bytes()
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "111")
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
         assert isinstance(app.screen, ReadOnly)
         text = flat(region_text(app, app.screen.query_one(Vertical)))
         assert "not saved: the file is read-only" in text and "Save as another file?" in text
-        await pilot.press("c")
+        await press(pilot, "c")
         await pilot.pause()
         assert status_shown_whole(app).startswith("not saved: the file is read-only — ")
         assert editor(app).dirty
-        await pilot.press("ctrl+s", "a")
+        await press(pilot, "ctrl+s", "a")
         await pilot.pause()
         assert isinstance(app.screen, ValueEntry)
         assert app.screen.query_one("Input").value == "arm"
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await pilot.pause()
         copy = in_tmp / "robots" / "arm.toml"
         assert load(copy) == editor(app).robot and not editor(app).dirty
@@ -591,18 +581,18 @@ async def test_save_as_key_writes_a_new_file_and_keeps_the_old(in_tmp):
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         await edit_cell(pilot, 0, 4, "111")
-        await pilot.press("S")
+        await press(pilot, "S")
         await pilot.pause()
         assert isinstance(app.screen, ValueEntry)
-        await pilot.press("ctrl+u", *"copy", "enter")
+        await press(pilot, "ctrl+u", *"copy", "enter")
         await pilot.pause()
         copy = in_tmp / "robots" / "copy.toml"
         assert load(copy).joints[0].a == 111.0
         assert "# the upper arm" in copy.read_text()
         assert editor(app).path == Path("robots/copy.toml") and not editor(app).dirty
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, ControlScreen)
     assert file.read_text() == COMMENTED
 
@@ -625,11 +615,10 @@ async def test_save_flow_outside_the_editor(in_tmp):
     host = FlowHost(robot, path, None)
     async with host.run_test(size=(80, 24)) as pilot:
         host.run_flow()
-        await pilot.pause()
-        assert isinstance(host.screen, ValueEntry)
+        assert await showing(pilot, ValueEntry)
         assert host.screen.query_one("Input").value == "irb140"  # the bundled file's name
-        await pilot.press("enter")
-        await pilot.pause()
+        await press(pilot, "enter")
+        await until(pilot, lambda: host.result != "running", "the save")
     target = Path("robots") / "irb140.toml"
     assert isinstance(host.result, SaveResult) and host.result.kind == "saved"
     assert host.result.path == target and load(target) == robot
@@ -644,10 +633,9 @@ async def test_save_flow_never_writes_a_file_created_meanwhile(in_tmp):
     target.write_text("# somebody else's file\n")
     async with host.run_test(size=(80, 24)) as pilot:
         host.run_flow()
-        await pilot.pause()
-        assert isinstance(host.screen, FileChanged)
-        await pilot.press("c")
-        await pilot.pause()
+        assert await showing(pilot, FileChanged)
+        await press(pilot, "c")
+        await until(pilot, lambda: host.result != "running", "the answer")
         assert host.result is None
         assert any("not saved" in n.message for n in host._notifications)
     assert target.read_text() == "# somebody else's file\n"

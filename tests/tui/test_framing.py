@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pilot_helpers import press, started
 
 from dhsim_tui.core import bundled_names, load_robot
 from dhsim_tui.render.picture import NO_ROLE, ROLE_INDEX
@@ -51,7 +52,7 @@ async def test_maximised_the_3d_view_is_filled_with_no_empty_band():
     near the top to near the bottom (it used 16 of 32 rows, the top 14 empty)."""
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.press("4", "z")
+        await press(pilot, "4", "z")
         await pilot.pause()
         iso = app.screen.query_one("#view-iso", ArmView)
         tall, wide, first, last = spans(iso.picture)
@@ -63,13 +64,13 @@ async def test_maximised_the_3d_view_is_filled_with_no_empty_band():
 async def test_turning_the_3d_view_holds_its_framing_while_the_arm_stays_in_it():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.press("4", "z")
+        await press(pilot, "4", "z")
         await pilot.pause()
         iso = app.screen.query_one("#view-iso", ArmView)
         panel = app.screen.query_one(ViewsPanel)
         for _ in range(24):  # a whole turn
             before = iso._framing
-            await pilot.press("d")
+            await press(pilot, "d")
             await pilot.pause()
             after = iso._framing
             if after != before:  # reframed: only because the arm left the picture
@@ -110,31 +111,31 @@ def test_f_fits_the_links_to_at_least_60_percent_of_every_view(name, rng):
 async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
         whole = front._framing
-        await pilot.press("F")
+        await press(pilot, "F")
         await pilot.pause()
         fit = front._framing
         assert fit.per_dot < whole.per_dot / 2  # much closer
         assert "fit (F)" in str(front.border_subtitle)
         tall, wide, _, _ = spans(front.picture, ROLE_INDEX["link"])
         assert max(tall, wide) >= 0.6
-        await pilot.press("down", "down", "right")  # Th3 one degree: the arm stays in
+        await press(pilot, "down", "down", "right")  # Th3 one degree: the arm stays in
         await pilot.pause()
         assert front._framing == fit
-        await pilot.press(
-            "up", "right_square_bracket", "right_square_bracket", "right_square_bracket"
+        await press(
+            pilot, "up", "right_square_bracket", "right_square_bracket", "right_square_bracket"
         )
-        await pilot.press(*["right"] * 4)  # Th2 by 180 degrees: out of the picture
+        await press(pilot, *["right"] * 4)  # Th2 by 180 degrees: out of the picture
         await pilot.pause()
         assert front._framing != fit
         # and the arm is whole in the new framing
         assert (front.picture.roles == ROLE_INDEX["tool"]).any()
-        await pilot.press("F")  # F again: the work area
+        await press(pilot, "F")  # F again: the work area
         await pilot.pause()
         assert front._framing == whole
-        await pilot.press("F", "0")  # or 0
+        await press(pilot, "F", "0")  # or 0
         await pilot.pause()
         assert front._framing == whole and not app.screen.query_one(ViewsPanel).fit
 
@@ -146,7 +147,7 @@ async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves():
 async def test_a_big_terminal_shows_every_read_out_and_no_block_of_empty_rows(size):
     app = make_app()
     async with app.run_test(size=size) as pilot:
-        await pilot.pause()
+        await started(pilot)
         side = app.screen.query_one("#side-panel")
         pose = str(app.screen.query_one("#pose").render())
         for word in ("X", "O", "roll", "pitch", "yaw", "rotation"):

@@ -7,7 +7,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from pilot_helpers import showing, until
+from pilot_helpers import press, showing, until
 from textual.command import CommandList, CommandPalette
 from textual.widgets import OptionList
 
@@ -65,16 +65,16 @@ async def editor_up(pilot) -> EditorScreen:
 async def run_palette(pilot, query: str, first: str) -> None:
     """ctrl+p, ``query``, and enter once the first command listed is ``first``."""
     app = pilot.app
-    await pilot.press("ctrl+p")
+    await press(pilot, "ctrl+p")
     await until(pilot, lambda: CommandPalette.is_open(app), "the palette")
-    await pilot.press(*query)
+    await press(pilot, *query)
 
     def found() -> bool:
         options = app.screen.query_one(CommandList)
         return options.option_count > 0 and options.get_option_at_index(0).hit.text == first
 
     await until(pilot, found, first)
-    await pilot.press("enter")
+    await press(pilot, "enter")
     await until(pilot, lambda: not CommandPalette.is_open(app), "the palette to close")
 
 
@@ -93,7 +93,7 @@ async def type_path(pilot, path: object) -> None:
     """In the open dialog: type a path, then enter."""
     assert await showing(pilot, OpenRobot)
     pilot.app.screen.query_one("#path").focus()
-    await pilot.press("ctrl+u", *str(path), "enter")
+    await press(pilot, "ctrl+u", *str(path), "enter")
     await pilot.pause()
 
 
@@ -103,13 +103,13 @@ async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         await type_path(pilot, source)
         assert await showing(pilot, ImportNotes)  # what the importer checked
         notes = " ".join(str(app.screen.query_one("Label").render()).split())
         assert "checked at home and 200 random joint values" in notes
         assert "Not saved yet: ctrl+s saves it as robots/<name>.toml." in notes
-        await pilot.press("enter")
+        await press(pilot, "enter")
         screen = editor(app)
         await until(pilot, lambda: app.screen is screen, "the editor")
         assert screen.robot == expected.robot
@@ -118,10 +118,10 @@ async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
         assert "imported from planar_elbow.urdf" in str(
             screen.query_one("#joints-table").border_title
         )
-        await pilot.press("ctrl+s")  # asks a name in robots/
+        await press(pilot, "ctrl+s")  # asks a name in robots/
         assert await showing(pilot, ValueEntry)
         assert app.screen.query_one("Input").value == "planar_elbow"
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await until(pilot, lambda: not screen.dirty, "the save")
         saved = in_tmp / "robots" / "planar_elbow.toml"
         assert load(saved) == expected.robot
@@ -136,13 +136,13 @@ async def test_a_tree_asks_for_the_tip(in_tmp):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         await type_path(pilot, tree)
         assert await showing(pilot, Choice)
         options = app.screen.query_one(OptionList)
         leaves = [str(options.get_option_at_index(i).prompt) for i in range(options.option_count)]
         assert sorted(leaves) == ["camera", "fore"]
-        await pilot.press("escape")  # no tip: nothing is imported
+        await press(pilot, "escape")  # no tip: nothing is imported
         await until(
             pilot,
             lambda: isinstance(app.screen, OpenRobot) and "not imported" in error_text(app),
@@ -152,10 +152,10 @@ async def test_a_tree_asks_for_the_tip(in_tmp):
         await type_path(pilot, tree)
         assert await showing(pilot, Choice)
         for _ in range(leaves.index("camera")):
-            await pilot.press("down")
-        await pilot.press("enter")
+            await press(pilot, "down")
+        await press(pilot, "enter")
         assert await showing(pilot, ImportNotes)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == import_file(tree, tip="camera").robot
         assert editor(app).robot.dof == 1
@@ -167,18 +167,18 @@ async def test_the_ur5_tree_from_the_list(in_tmp):
     app = editor_app()
     async with app.run_test(size=(120, 40)) as pilot:
         await editor_up(pilot)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         first = str(app.screen.query_one(OptionList).get_option_at_index(0).prompt)
         assert first.startswith("robots/ur5.urdf") and "a tree" in first
-        await pilot.press("enter")  # the first entry: ./robots/ur5.urdf
+        await press(pilot, "enter")  # the first entry: ./robots/ur5.urdf
         assert await showing(pilot, Choice)
         leaves = import_file_leaves(in_tmp / "robots" / "ur5.urdf")
         for _ in range(leaves.index("tool0")):
-            await pilot.press("down")
-        await pilot.press("enter")
+            await press(pilot, "down")
+        await press(pilot, "enter")
         assert await showing(pilot, ImportNotes)
-        await pilot.press("enter")  # closes the notes
+        await press(pilot, "enter")  # closes the notes
         assert await showing(pilot, EditorScreen)
         expected = import_file(in_tmp / "robots" / "ur5.urdf", tip="tool0").robot
         assert editor(app).robot == expected
@@ -212,14 +212,14 @@ async def test_a_bad_urdf_shows_its_error_and_changes_nothing(in_tmp, text, mess
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         before = (await editor_up(pilot)).robot
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         await type_path(pilot, bad)
         await until(pilot, lambda: error_text(app), "the error")
         assert await showing(pilot, OpenRobot)  # still open: fix the path or escape
         error = error_text(app)
         assert error.startswith(message) and reason[:40] in error
         assert "\n" not in error.strip()
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == before
         assert not editor(app).dirty
@@ -234,14 +234,14 @@ async def test_a_csv_is_imported_too(in_tmp):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         lines = app.screen.query_one(OptionList)
         first = str(lines.get_option_at_index(0).prompt)
         assert first.startswith("robots/gantry.csv") and "Cartesian gantry: 3 joints" in first
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert await showing(pilot, ImportNotes)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == import_file(csv).robot
         assert editor(app).path is None
@@ -258,16 +258,16 @@ async def test_importing_on_the_simulator_runs_the_robot_unsaved(in_tmp):
         assert app.screen.importing
         await type_path(pilot, source)
         assert await showing(pilot, ImportNotes)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert await showing(pilot, ControlScreen)
         assert app.robot == import_file(source).robot
         assert app.robot_path is None and app.has_unsaved_poses
-        await pilot.press("q")  # quitting asks: it was never saved
+        await press(pilot, "q")  # quitting asks: it was never saved
         assert await showing(pilot, SaveGuard)
-        await pilot.press("s")
+        await press(pilot, "s")
         assert await showing(pilot, ValueEntry)
         saved = in_tmp / "robots" / "spherical_wrist.toml"
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await until(pilot, saved.exists, "the save")
     assert load(saved) == import_file(source).robot
 
@@ -281,12 +281,12 @@ async def test_import_from_the_editors_palette_takes_only_urdf_and_csv(in_tmp):
         assert app.screen.importing
         assert app.screen.query_one(OptionList).option_count == 0  # no robots/ here
         await until(pilot, lambda: app.screen.focused is app.screen.query_one("#path"))
-        await pilot.press(*"robots/x.toml", "enter")  # typed at once: the path has the focus
+        await press(pilot, *"robots/x.toml", "enter")  # typed at once: the path has the focus
         await until(pilot, lambda: error_text(app), "the error")
         assert error_text(app) == (
             "cannot import: dhsim imports .urdf and .csv files — robots/x.toml"
         )
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == before and not editor(app).dirty
 
@@ -297,11 +297,11 @@ async def test_typing_on_the_list_types_the_path():
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await editor_up(pilot)
-        await pilot.press("ctrl+o")
+        await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         assert app.screen.focused is app.screen.query_one("OptionList")  # bundled robots
-        await pilot.press(*str(source))
+        await press(pilot, *str(source))
         await pilot.pause()
         assert app.screen.query_one("#path").value == str(source)  # every character
-        await pilot.press("enter")
+        await press(pilot, "enter")
         assert await showing(pilot, ImportNotes)

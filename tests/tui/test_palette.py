@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
-from pilot_helpers import non_ascii_outside_views, showing, until
+from pilot_helpers import non_ascii_outside_views, press, showing, until
 from textual.command import CommandInput, CommandList, CommandPalette, SearchIcon
 
 from dhsim_tui.core import load_robot
@@ -53,10 +53,10 @@ def searching(app: DhsimApp) -> bool:
 async def open_palette(pilot, query: str = "") -> list[str]:
     """ctrl+p (and a query): the names listed once the search has finished."""
     app = pilot.app
-    await pilot.press("ctrl+p")
+    await press(pilot, "ctrl+p")
     await until(pilot, lambda: CommandPalette.is_open(app), "the palette")
     if query:
-        await pilot.press(*query)
+        await press(pilot, *query)
     await until(
         pilot,
         lambda: (
@@ -74,8 +74,8 @@ async def run_command(pilot, query: str, name: str) -> None:
     names = await open_palette(pilot, query)
     assert name in names, names
     for _ in range(names.index(name)):
-        await pilot.press("down")
-    await pilot.press("enter")
+        await press(pilot, "down")
+    await press(pilot, "enter")
     await until(pilot, lambda: not CommandPalette.is_open(pilot.app), "the palette to close")
     await pilot.pause()
     await pilot.pause()
@@ -110,7 +110,7 @@ async def test_the_palette_lists_dhsims_commands():
         # Textual's own: a picker of dozens of themes, a keys panel, a screenshot
         for name in ("Theme", "Keys", "Screenshot", "Maximize"):
             assert name not in names
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await pilot.pause()
         assert await showing(pilot, ControlScreen)
 
@@ -124,7 +124,7 @@ async def test_go_to_pose_qr_moves_the_arm_there():
         assert isinstance(screen, ControlScreen)
         assert screen.q == app.robot.pose("qr")
         assert "pose qr" in str(screen.query_one("#status").render())
-        await pilot.press("p")  # the next pose goes on from qr
+        await press(pilot, "p")  # the next pose goes on from qr
         await until(pilot, lambda: screen.q == app.robot.pose("qs"), "pose qs")
 
 
@@ -135,18 +135,18 @@ async def test_views_zoom_and_theme_commands():
         screen = app.screen
         await run_command(pilot, "view top", "View: top")
         assert screen.query_one(ViewsPanel).selected == 0
-        await pilot.press("plus")
+        await press(pilot, "plus")
         await until(pilot, lambda: screen.query_one("#views").zoom != 1.0, "zoom")
         names = await open_palette(pilot, "view")
         assert "View: reset zoom" in names
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await run_command(pilot, "reset zoom", "View: reset zoom")
         assert screen.query_one("#views").zoom == 1.0
         await run_command(pilot, "maximise", "View: maximise")
         assert screen.has_class("-max")
         names = await open_palette(pilot, "view")
         assert "View: restore" in names and "View: maximise" not in names
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await run_command(pilot, "light", "Theme: light")
         assert app.theme == "dhsim-light"
 
@@ -158,8 +158,8 @@ async def test_save_is_offered_only_when_something_is_unsaved():
         names = await open_palette(pilot)
         assert "Save" not in names and "Undo" not in names
         assert "Save as…" in names and "Export…" in names
-        await pilot.press("escape")
-        await pilot.press("t")  # an edit
+        await press(pilot, "escape")
+        await press(pilot, "t")  # an edit
         await until(pilot, lambda: editor(app).dirty, "the edit")
         names = await open_palette(pilot)
         assert "Save" in names and "Undo" in names and "Redo" not in names
@@ -180,8 +180,8 @@ async def test_convert_in_the_editor_is_one_undoable_edit():
         )
         names = await open_palette(pilot, "convert")
         assert "Convert to standard D-H" in names
-        await pilot.press("escape")
-        await pilot.press("ctrl+z")
+        await press(pilot, "escape")
+        await press(pilot, "ctrl+z")
         await until(pilot, lambda: editor(app).robot == original, "undo")
         assert not editor(app).dirty
 
@@ -195,7 +195,7 @@ async def test_convert_on_the_simulator_opens_the_editor_with_the_change():
         assert await showing(pilot, EditorScreen)
         assert editor(app).robot == convert(original, "modified")
         assert app.robot == original  # the simulator runs what it ran
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         await until(pilot, lambda: editor(app).robot == original, "undo")
 
 
@@ -203,10 +203,10 @@ async def test_no_palette_over_a_dialog():
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
-        await pilot.press("question_mark")
+        await press(pilot, "question_mark")
         await pilot.pause()
         assert await showing(pilot, HelpScreen)
-        await pilot.press("ctrl+p")
+        await press(pilot, "ctrl+p")
         await pilot.pause()
         assert await showing(pilot, HelpScreen)
         assert not CommandPalette.is_open(app)
@@ -223,7 +223,7 @@ async def test_a_pose_name_is_shown_as_text_not_markup():
         assert "Go to pose [red" in names
         shown = "\n".join(strip.text for strip in app.screen._compositor.render_strips())
         assert "Go to pose [b]x[/b]" in shown and "Go to pose [red" in shown
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await run_command(pilot, "[b]", "Go to pose [b]x[/b]")
         assert await showing(pilot, ControlScreen)
 
@@ -238,8 +238,16 @@ async def test_the_palette_is_ascii_in_ascii_mode(start):
         assert app.screen.query_one(SearchIcon).icon == ">"
         await pilot.pause()
         assert non_ascii_outside_views(app) == []
-        await pilot.press(*"pose")
-        await pilot.pause(0.3)
+        await press(pilot, *"pose")
+        await until(
+            pilot,
+            lambda: (
+                app.screen.query_one(CommandInput).value == "pose"
+                and not searching(app)
+                and app.screen.query_one(CommandList).option_count > 0
+            ),
+            "the palette's search for pose",
+        )
         assert non_ascii_outside_views(app) == []
 
 
@@ -249,7 +257,7 @@ async def test_a_list_key_while_the_palette_leaves_does_nothing():
     app = DhsimApp(load_robot("puma560")[0])
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
-        await pilot.press("ctrl+p")
+        await press(pilot, "ctrl+p")
         await until(pilot, lambda: CommandPalette.is_open(app), "the palette")
         palette = app.screen
         await palette.query_one(CommandList).remove()  # as when it is taken down
@@ -275,10 +283,10 @@ async def test_a_press_on_a_widget_leaving_the_screen_is_dropped(monkeypatch):
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: isinstance(app.screen, ControlScreen), "the simulator")
         monkeypatch.setattr(Screen, "_forward_event", gone)
-        press = events.MouseDown(None, 10, 3, 0, 0, 1, False, False, False, screen_x=10, screen_y=3)
-        await app.on_event(press)  # as the driver hands a press to the app
+        down = events.MouseDown(None, 10, 3, 0, 0, 1, False, False, False, screen_x=10, screen_y=3)
+        await app.on_event(down)  # as the driver hands a press to the app
         await pilot.pause()
         monkeypatch.undo()
-        await pilot.press("right")
+        await press(pilot, "right")
         await pilot.pause()
         assert app.return_code is None and app.screen.q[0] != 0.0

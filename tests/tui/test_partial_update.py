@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import pyte
 import textual
+from pilot_helpers import press
 from textual._compositor import ChopsUpdate, LayoutUpdate
 
 from dhsim_tui.core import load_robot
@@ -60,7 +61,7 @@ async def test_left_cropped_updates_draw_the_same_screen():
         app.screen.refresh()  # a full frame both terminals start from
         await pilot.pause()
         for key in KEYS:
-            await pilot.press(key)
+            await press(pilot, key)
             await pilot.pause()
             assert _cells(ours) == _cells(theirs), key
     assert partial["updates"] >= len(KEYS) // 2

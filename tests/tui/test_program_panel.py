@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from pilot_helpers import until
+from pilot_helpers import press, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.model.program import Program, Step
@@ -37,27 +37,27 @@ async def test_record_two_poses_and_play_them():
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
         screen = await started(pilot)
-        await pilot.press("R")  # the home pose as step 1
-        await pilot.press("right", "right", "right", "right_square_bracket", "right")
+        await press(pilot, "R")  # the home pose as step 1
+        await press(pilot, "right", "right", "right", "right_square_bracket", "right")
         await pilot.pause()
         moved = screen.q
         assert moved != robot.home
-        await pilot.press("R")
+        await press(pilot, "R")
         await pilot.pause()
         program = app.robot.program("program1")
         assert [s.move for s in program.steps] == ["joint", "joint"]
         assert np.allclose(program.steps[1].to, moved)
         assert screen.has_class("-program") and screen.query_one(ProgramPanel).display
-        await pilot.press("g")  # the panel takes the keys
+        await press(pilot, "g")  # the panel takes the keys
         await pilot.pause()
         assert screen.focused is screen.query_one(ProgramPanel)
-        await pilot.press("up", "l")  # step 1 a linear move
+        await press(pilot, "up", "l")  # step 1 a linear move
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["linear", "joint"]
-        await pilot.press("ctrl+z")
+        await press(pilot, "ctrl+z")
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["joint", "joint"]
-        await pilot.press("space")
+        await press(pilot, "space")
         await until(pilot, lambda: screen._programs.playback is not None, "playback")
         assert screen._programs.playback.duration > 0
         await until(pilot, lambda: "played program1" in status(app), "the end of playback")
@@ -65,7 +65,10 @@ async def test_record_two_poses_and_play_them():
         assert "kept until you quit" in status(app) or app.has_unsaved_poses
 
 
-async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it():
+async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it(monkeypatch):
+    # the playback's clock stands still: however slow the machine, the
+    # program is still playing when space pauses it
+    monkeypatch.setattr("dhsim_tui.tui.screens.control_program.monotonic", lambda: 0.0)
     robot = load_robot("puma560")[0]
     to_limit = Program("edge", (Step("joint", (160.0, 0, 0, 0, 0, 0)), Step("wait", seconds=0.2)))
     robot = replace(robot, programs=(to_limit,))
@@ -75,20 +78,21 @@ async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it():
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
         screen = await started(pilot)
-        await pilot.press("g", "space")
+        await press(pilot, "g", "space")
         await until(pilot, lambda: "playing edge" in status(app), "playback")
         assert f"{len(problems)} problems" in status(app)
-        await pilot.press("space")  # pause
-        assert "paused" in status(app)
+        assert screen._programs.playing
+        await press(pilot, "space")  # pause
+        assert "paused" in status(app) and not screen._programs.playing
         assert abs(screen._programs.playback.duration - trajectory.duration) < 1e-9
-        await pilot.press("n")
+        await press(pilot, "n")
         await pilot.pause()
         assert f"at {problems[0].time:.2f} s" in status(app) and "Th1" in status(app)
         assert "!" in str(screen.query_one(ProgramPanel).render())  # the step is marked
-        await pilot.press("full_stop", "full_stop", "full_stop")  # to the end
+        await press(pilot, "full_stop", "full_stop", "full_stop")  # to the end
         await pilot.pause()
         assert np.allclose(screen.q, trajectory.q[-1], atol=1e-6)
-        await pilot.press("comma", "comma", "comma")
+        await press(pilot, "comma", "comma", "comma")
         await pilot.pause()
         assert np.allclose(screen.q, trajectory.q[0], atol=1e-6)
 
@@ -107,7 +111,7 @@ async def test_the_tools_path_is_drawn_in_every_view_while_a_program_is_loaded()
             ]
 
         assert all(not found for found in trails())
-        await pilot.press("g", "space")
+        await press(pilot, "g", "space")
         await until(pilot, lambda: all(trails()), "the path in every view")
         # the front view (x right, z up) shows the sampled tool positions themselves
         trajectory = sample(robot, demo, 100.0, start=robot.home)
@@ -119,7 +123,7 @@ async def test_the_tools_path_is_drawn_in_every_view_while_a_program_is_loaded()
         assert xs.min() >= trajectory.xyz[:, 0].min() - 1e-9
         assert xs.max() <= trajectory.xyz[:, 0].max() + 1e-9
         assert "path" in str(views.query_one(".legend").render())
-        await pilot.press("space", "ctrl+up")  # pause; a change to the program: the path goes
+        await press(pilot, "space", "ctrl+up")  # pause; a change to the program: the path goes
         await pilot.pause()
         await until(pilot, lambda: not any(trails()), "the path gone")
 
@@ -129,19 +133,19 @@ async def test_play_faster_and_the_plot_at_the_time_played():
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
         screen = await started(pilot)
-        await pilot.press("g", "right_square_bracket", "right_square_bracket")
+        await press(pilot, "g", "right_square_bracket", "right_square_bracket")
         assert screen._programs.speed == 4.0 and "×4" in status(app)
         began = screen._programs
-        await pilot.press("space")
+        await press(pilot, "space")
         await until(pilot, lambda: began.playback is not None and began.playback.time > 0.5, "play")
         await until(pilot, lambda: "played demo" in status(app), "the end, four times as fast")
         # 7.85 s of program in about 2 s: well under the real-time length
-        await pilot.press("comma")
-        await pilot.press("t")
+        await press(pilot, "comma")
+        await press(pilot, "t")
         await until(pilot, lambda: type(app.screen).__name__ == "ProgramPlot", "the plot")
         text = str(app.screen.query_one("#plot").render())
         assert "joints" in text and "tool speed" in text
-        await pilot.press("escape")
+        await press(pilot, "escape")
         await until(pilot, lambda: app.screen is screen, "back")
 
 
@@ -151,25 +155,25 @@ async def test_L_makes_R_record_linear_moves_and_the_title_says_so():
     async with app.run_test(size=(100, 30)) as pilot:
         screen = await started(pilot)
         panel = screen.query_one(ProgramPanel)
-        await pilot.press("R")
+        await press(pilot, "R")
         await pilot.pause()
         assert "L: record linear moves" in status(app)
         assert "R joint" in str(panel.border_title)
-        await pilot.press("L")
+        await press(pilot, "L")
         await pilot.pause()
         assert "R records linear moves" in status(app)
         assert "R linear" in str(panel.border_title)
-        await pilot.press("right", "right", "R")  # the jogging keys still jog
+        await press(pilot, "right", "right", "R")  # the jogging keys still jog
         await pilot.pause()
         steps = app.robot.program("program1").steps
         assert [s.move for s in steps] == ["joint", "linear"]
         assert np.allclose(steps[1].to, screen.q)
-        await pilot.press("L", "left", "R")
+        await press(pilot, "L", "left", "R")
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["joint", "linear", "joint"]
         assert "recorded step 3 of program1: a joint move" in status(app)
         # after the selected step, and said so: step 1 selected, the new one is step 2
-        await pilot.press("g", "up", "up", "L", "R")
+        await press(pilot, "g", "up", "up", "L", "R")
         await pilot.pause()
         steps = app.robot.program("program1").steps
         assert [s.move for s in steps] == ["joint", "linear", "linear", "joint"]

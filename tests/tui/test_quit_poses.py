@@ -8,6 +8,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from pilot_helpers import press, until
 
 from dhsim_tui.core import load, load_robot
 from dhsim_tui.tui.app import DhsimApp
@@ -33,7 +34,7 @@ def bundled_app() -> DhsimApp:
 
 async def save_pose(pilot, name: str = "here") -> None:
     """Step joint 1 by one degree and keep the joints as pose ``name`` (``P``)."""
-    await pilot.press("right", "P", "ctrl+u", *name, "enter")
+    await press(pilot, "right", "P", "ctrl+u", *name, "enter")
     await pilot.pause()
 
 
@@ -42,13 +43,13 @@ async def test_q_with_a_pose_only_in_memory_asks_and_stay_stays():
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
         assert app.has_unsaved_poses
-        await pilot.press("q")
+        await press(pilot, "q")
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("escape")  # stay
+        await press(pilot, "escape")  # stay
         assert isinstance(app.screen, ControlScreen)
         assert app.return_code is None  # still running
         assert app.robot.pose("here") == POSE
-        await pilot.press("q", "d")  # discard
+        await press(pilot, "q", "d")  # discard
     assert app.return_code == 0
 
 
@@ -56,16 +57,16 @@ async def test_ctrl_c_asks_the_same_question():
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
-        await pilot.press("ctrl+c")
+        await press(pilot, "ctrl+c")
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert app.return_code is None
 
 
 async def test_q_without_changes_quits_at_once():
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "q")  # moving a joint is not a change to the robot
+        await press(pilot, "right", "q")  # moving a joint is not a change to the robot
     assert app.return_code == 0
 
 
@@ -74,10 +75,10 @@ async def test_save_from_the_quit_question_asks_a_name_for_a_bundled_robot(tmp_p
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
-        await pilot.press("q", "s")
+        await press(pilot, "q", "s")
         await pilot.pause()
         assert isinstance(app.screen, ValueEntry)  # a bundled robot is a template
-        await pilot.press("ctrl+u", *"mypuma", "enter")
+        await press(pilot, "ctrl+u", *"mypuma", "enter")
         await pilot.pause()
     assert app.return_code == 0
     saved = load(tmp_path / "robots" / "mypuma.toml")
@@ -90,13 +91,13 @@ async def test_cancelling_the_name_stays(tmp_path, monkeypatch):
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
-        await pilot.press("q", "s")
+        await press(pilot, "q", "s")
         await pilot.pause()
-        await pilot.press("escape")  # no name: not saved, so not quitting either
+        await press(pilot, "escape")  # no name: not saved, so not quitting either
         await pilot.pause()
         assert app.return_code is None
         assert app.has_unsaved_poses
-        await pilot.press("q", "d")
+        await press(pilot, "q", "d")
     assert not (tmp_path / "robots").exists()
 
 
@@ -105,7 +106,7 @@ async def test_a_pose_saved_in_its_own_file_quits_at_once(robot_file):
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
         assert not app.has_unsaved_poses
-        await pilot.press("q")
+        await press(pilot, "q")
     assert app.return_code == 0
     assert load(robot_file).pose("here") == POSE
 
@@ -114,12 +115,12 @@ async def test_the_editor_asks_once_for_poses_it_was_given():
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
-        await pilot.press("e")
+        await press(pilot, "e")
         await pilot.pause()
         assert isinstance(app.screen, EditorScreen) and app.screen.dirty
-        await pilot.press("ctrl+q")
+        await press(pilot, "ctrl+q")
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("d")
+        await press(pilot, "d")
         await pilot.pause()
     assert app.return_code == 0  # not asked a second time by the simulator
 
@@ -137,13 +138,13 @@ async def test_P_never_overwrites_a_file_changed_on_disk(robot_file):
         theirs = change_on_disk(robot_file)
         await save_pose(pilot)
         assert isinstance(app.screen, FileChanged)
-        await pilot.press("c")  # cancel: nothing written, the pose stays in memory
+        await press(pilot, "c")  # cancel: nothing written, the pose stays in memory
         await pilot.pause()
         assert robot_file.read_bytes() == theirs
         assert app.robot.pose("here") == POSE and app.has_unsaved_poses
-        await pilot.press("q")  # ... and quitting asks about it
+        await press(pilot, "q")  # ... and quitting asks about it
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("d")
+        await press(pilot, "d")
     assert robot_file.read_bytes() == theirs
 
 
@@ -152,12 +153,12 @@ async def test_P_on_a_changed_file_can_overwrite(robot_file):
     async with app.run_test(size=(80, 24)) as pilot:
         change_on_disk(robot_file)
         await save_pose(pilot)
-        await pilot.press("o")  # overwrite, knowingly
+        await press(pilot, "o")  # overwrite, knowingly
         await pilot.pause()
         assert not app.has_unsaved_poses
         await save_pose(pilot, "again")  # the new stamp: no question this time
         assert isinstance(app.screen, ControlScreen)
-        await pilot.press("q")
+        await press(pilot, "q")
     assert app.return_code == 0
     on_disk = load(robot_file)
     assert on_disk.pose("here") == POSE and on_disk.pose("again") == (2.0, 0, 0, 0, 0, 0)
@@ -168,19 +169,19 @@ async def test_P_on_a_changed_file_can_reload_it(robot_file):
     async with app.run_test(size=(80, 24)) as pilot:
         theirs = change_on_disk(robot_file)
         await save_pose(pilot)
-        await pilot.press("r")  # reload: the file's robot runs, my pose put back on top
-        for _ in range(50):
-            await pilot.pause(0.02)
-            if isinstance(app.screen, ControlScreen) and "here" in app.robot.pose_names:
-                break
-        assert isinstance(app.screen, ControlScreen)
+        await press(pilot, "r")  # reload: the file's robot runs, my pose put back on top
+        await until(
+            pilot,
+            lambda: isinstance(app.screen, ControlScreen) and "here" in app.robot.pose_names,
+            "the reloaded robot running, with my pose",
+        )
         assert "elsewhere" in app.robot.pose_names and "here" in app.robot.pose_names
         assert app.screen.robot == app.robot
         assert app.has_unsaved_poses  # mine, not written yet
         assert "your edits on top" in str(app.screen.query_one("#status").render())
-        await pilot.press("q")  # asks: discard
+        await press(pilot, "q")  # asks: discard
         await pilot.pause()
-        await pilot.press("d")
+        await press(pilot, "d")
         await pilot.pause()
     assert app.return_code == 0
     assert robot_file.read_bytes() == theirs
@@ -192,18 +193,18 @@ async def test_the_quit_question_saves_into_a_changed_file_only_when_told(robot_
     async with app.run_test(size=(80, 24)) as pilot:
         theirs = change_on_disk(robot_file)
         await save_pose(pilot)
-        await pilot.press("c")  # keep it in memory for now
+        await press(pilot, "c")  # keep it in memory for now
         await pilot.pause()
-        await pilot.press("q", "s")
+        await press(pilot, "q", "s")
         await pilot.pause()
         assert isinstance(app.screen, FileChanged)
-        await pilot.press("c")  # not saved: stay
+        await press(pilot, "c")  # not saved: stay
         await pilot.pause()
         assert app.return_code is None
         assert robot_file.read_bytes() == theirs
-        await pilot.press("q", "s")
+        await press(pilot, "q", "s")
         await pilot.pause()
-        await pilot.press("o")
+        await press(pilot, "o")
         await pilot.pause()
     assert app.return_code == 0
     assert load(robot_file).pose("here") == POSE

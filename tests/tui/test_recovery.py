@@ -13,6 +13,7 @@ from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
 import pytest
+from pilot_helpers import press, started
 
 from dhsim_tui.core import RobotFileError, load, load_robot
 from dhsim_tui.core.files.recovery import (
@@ -171,10 +172,10 @@ def test_a_recovery_that_cannot_be_written_raises(tmp_path, monkeypatch, robot_f
 async def test_the_app_keeps_an_editors_unsaved_changes(recovery_folder, robot_file):
     app = DhsimApp(load(robot_file), robot_file, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert app.keep_unsaved_work() == []  # nothing unsaved: nothing written
         assert not recovery_folder.exists()
-        await pilot.press("t")
+        await press(pilot, "t")
         messages = app.keep_unsaved_work(15)
         [file] = recovery_folder.iterdir()
         assert messages == [
@@ -188,7 +189,7 @@ async def test_the_app_keeps_poses_kept_only_in_memory(recovery_folder):
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "P", "ctrl+u", *"here", "enter")
+        await press(pilot, "right", "P", "ctrl+u", *"here", "enter")
         await pilot.pause()
         app.keep_unsaved_work(1)
     found = find_recovery(path)  # keyed by the bundled file it came from
@@ -201,7 +202,7 @@ async def test_a_failed_recovery_write_says_so(tmp_path, monkeypatch, robot_file
     monkeypatch.setenv("DHSIM_RECOVERY_DIR", str(blocker / "recovery"))
     app = DhsimApp(load(robot_file), robot_file, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("t")
+        await press(pilot, "t")
         [message] = app.keep_unsaved_work(1)
     assert (
         message.startswith("dhsim: SIGHUP: unsaved changes to Puma 560") and "NOT kept" in message
@@ -218,17 +219,17 @@ async def test_the_start_offers_a_recovery_and_restore_opens_the_editor(
     write_recovery(robot, robot_file)
     app = DhsimApp(load(robot_file), robot_file, animate=False, recovery=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, Choice)
         assert "Restore unsaved changes from" in app.screen.query_one("Vertical").border_title
-        await pilot.press("enter")  # restore
+        await press(pilot, "enter")  # restore
         await pilot.pause()
         editor = app.screen
         assert isinstance(editor, EditorScreen)
         assert editor.robot == robot and editor.dirty  # unsaved against the file
         assert editor.saved == load(robot_file)
         assert find_recovery(robot_file) is None  # now it lives in the editor
-        await pilot.press("ctrl+s")
+        await press(pilot, "ctrl+s")
         await pilot.pause()
     assert load(robot_file) == robot
 
@@ -238,9 +239,9 @@ async def test_later_keeps_it_and_discard_deletes_it(recovery_folder, robot_file
     write_recovery(changed(robot_file), robot_file)
     app = DhsimApp(load(robot_file), robot_file, start="edit", animate=False, recovery=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, Choice)
-        await pilot.press(*keys)
+        await press(pilot, *keys)
         await pilot.pause()
         editor = app.screen
         assert isinstance(editor, EditorScreen) and not editor.dirty  # `dhsim edit` goes on
@@ -251,7 +252,7 @@ async def test_a_recovery_the_file_already_holds_is_not_offered(recovery_folder,
     write_recovery(load(robot_file), robot_file)  # e.g. saved later by hand
     app = DhsimApp(load(robot_file), robot_file, animate=False, recovery=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, ControlScreen)
     assert find_recovery(robot_file) is None
 
@@ -261,7 +262,7 @@ async def test_a_damaged_recovery_is_reported_not_fatal(recovery_folder, robot_f
     file.write_text("garbage")
     app = DhsimApp(load(robot_file), robot_file, animate=False, recovery=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, ControlScreen)
         assert any(str(file) in n.message for n in app._notifications)
     assert file.exists()  # left for a person to look at
@@ -272,9 +273,9 @@ async def test_dhsim_new_offers_a_new_robots_recovery(recovery_folder):
     write_recovery(sketch, None)
     app = DhsimApp(new_robot("new robot"), None, start="new", animate=False, recovery=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, Choice)
-        await pilot.press("enter")
+        await press(pilot, "enter")
         await pilot.pause()
         assert isinstance(app.screen, EditorScreen)
         assert app.screen.robot == sketch and app.screen.dirty and app.screen.path is None
@@ -285,7 +286,7 @@ async def test_pilot_apps_never_look_for_recoveries(recovery_folder, robot_file)
     write_recovery(changed(robot_file), robot_file)
     app = DhsimApp(load(robot_file), robot_file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         assert isinstance(app.screen, ControlScreen)
     assert os.path.exists(recovery_file(robot_file))
 
@@ -296,16 +297,16 @@ async def test_opening_a_robot_in_the_editor_offers_its_recovery(recovery_folder
     write_recovery(robot, robot_file)
     app = DhsimApp(*load_robot("gantry"), start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("ctrl+o")
+        await started(pilot)
+        await press(pilot, "ctrl+o")
         await pilot.pause()
         app.screen.query_one("#path").focus()
         for key in str(robot_file):
-            await pilot.press(key)
-        await pilot.press("enter")
+            await press(pilot, key)
+        await press(pilot, "enter")
         await pilot.pause()
         assert isinstance(app.screen, Choice)
-        await pilot.press("enter")  # restore
+        await press(pilot, "enter")  # restore
         await pilot.pause()
         editor = app.screen
         assert isinstance(editor, EditorScreen)

@@ -7,6 +7,7 @@ import os
 import stat
 
 import pytest
+from pilot_helpers import press, started
 
 from dhsim_tui.cli.main import main
 from dhsim_tui.core import Joint, Robot, load, load_robot, save
@@ -28,18 +29,18 @@ async def test_square_brackets_in_names_and_typed_text_are_shown_literally(tmp_p
     save(robot, file)
     app = DhsimApp(load(file), file, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("p")
+        await press(pilot, "p")
         assert "[/p]" in str(app.screen.query_one("#status").render())
         shown = "\n".join(strip.text for strip in app.screen._compositor.render_strips())
         assert BRACKETS in shown  # what a person sees, brackets and all
-        await pilot.press("enter", "ctrl+u", "[", "/", "enter")
+        await press(pilot, "enter", "ctrl+u", "[", "/", "enter")
         assert isinstance(app.screen, ValueEntry)
         assert "'[/' is not a number" in str(app.screen.query_one("#error").render())
-        await pilot.press("escape", "question_mark")
+        await press(pilot, "escape", "question_mark")
         assert isinstance(app.screen, HelpScreen)
-        await pilot.press("escape", "e")
+        await press(pilot, "escape", "e")
         assert isinstance(app.screen, EditorScreen)
-        await pilot.press("tab", "a", "ctrl+u", *"[/x]", "enter")
+        await press(pilot, "tab", "a", "ctrl+u", *"[/x]", "enter")
         assert "[/x]" in app.screen.robot.pose_names
 
 
@@ -95,10 +96,10 @@ async def test_ctrl_q_over_a_dialog_still_guards_unsaved_edits():
     robot, path = load_robot("gantry")
     app = DhsimApp(robot, path, start="edit", animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("t", "question_mark", "ctrl+q")
+        await started(pilot)
+        await press(pilot, "t", "question_mark", "ctrl+q")
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert app.is_running
 
 
@@ -106,11 +107,11 @@ async def test_a_pose_kept_only_in_memory_counts_as_unsaved_in_the_editor():
     robot, path = load_robot("gantry")  # bundled: P keeps the pose in memory only
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("right", "P", "enter", "e")
+        await press(pilot, "right", "P", "enter", "e")
         assert isinstance(app.screen, EditorScreen) and app.screen.dirty
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, SaveGuard)
-        await pilot.press("escape")
+        await press(pilot, "escape")
         assert isinstance(app.screen, EditorScreen)
 
 
@@ -118,6 +119,6 @@ async def test_metre_robots_show_enough_decimals():
     robot, path = load_robot("planar2")
     app = DhsimApp(robot, path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.press("enter", "ctrl+u", *"10", "enter")
+        await press(pilot, "enter", "ctrl+u", *"10", "enter")
         assert isinstance(app.screen, ControlScreen)
         assert "1.96962 m" in str(app.screen.query_one("#pose").render())

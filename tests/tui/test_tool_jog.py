@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pilot_helpers import press, settled, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.analysis.workspace import reach
@@ -26,7 +27,7 @@ def puma_app(ascii: bool = False) -> DhsimApp:
 
 
 async def go_start(pilot) -> ControlScreen:
-    await pilot.press(*["p"] * len(pilot.app.robot.pose_names))  # 'start' is the last
+    await press(pilot, *["p"] * len(pilot.app.robot.pose_names))  # 'start' is the last
     await pilot.pause()
     screen = pilot.app.screen
     assert isinstance(screen, ControlScreen) and screen.q == GOOD
@@ -102,20 +103,20 @@ async def test_a_step_along_tool_z_moves_the_tool_along_its_approach_vector():
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
         before = tool_pose(app)
-        await pilot.press("c", "f", "down", "down", "right_square_bracket")  # tool z, 10 mm
+        await press(pilot, "c", "f", "down", "down", "right_square_bracket")  # tool z, 10 mm
         await pilot.pause()
         assert (
             screen.query_one(CartesianPanel).frame == TOOL
             and screen.query_one(CartesianPanel).row == 2
         )
-        await pilot.press("right")
+        await press(pilot, "right")
         await pilot.pause()
         after = tool_pose(app)
         step = after[:3, 3] - before[:3, 3]
         assert np.linalg.norm(step) == pytest.approx(10.0, abs=1e-6 * reach(app.robot))
         assert np.allclose(step, 10.0 * before[:3, 2], atol=1e-6 * reach(app.robot))
         assert np.linalg.norm(rotation_error(before[:3, :3], after[:3, :3])) < 1e-6
-        await pilot.press("left", "left")  # and back the other way, 10 mm past the start
+        await press(pilot, "left", "left")  # and back the other way, 10 mm past the start
         await pilot.pause()
         back = tool_pose(app)[:3, 3] - before[:3, 3]
         assert np.allclose(back, -10.0 * before[:3, 2], atol=1e-6 * reach(app.robot))
@@ -126,7 +127,7 @@ async def test_a_world_turn_keeps_the_tool_point_and_turns_about_world_z():
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
         before = tool_pose(app)
-        await pilot.press("c", *["down"] * 5, "right_square_bracket", "right")  # Rz 5 deg
+        await press(pilot, "c", *["down"] * 5, "right_square_bracket", "right")  # Rz 5 deg
         await pilot.pause()
         assert screen.query_one(CartesianPanel).frame == WORLD
         after = tool_pose(app)
@@ -139,25 +140,25 @@ async def test_f_says_the_frame_in_the_panel_footer_and_status_and_only_in_carte
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
-        await pilot.press("f")  # joint mode: f does nothing
+        await press(pilot, "f")  # joint mode: f does nothing
         await pilot.pause()
         panel = app.screen.query_one(CartesianPanel)
         assert panel.frame == WORLD and "f" not in app.screen.active_bindings
-        await pilot.press("c")
+        await press(pilot, "c")
         await pilot.pause()
         assert "WORLD" in str(panel.border_title)
         assert panel.check_action("frame", ("tool",)) and not panel.check_action(
             "frame", ("world",)
         )
         assert app.screen.active_bindings["f"][1].id == "cartesian.tool_frame"
-        await pilot.press("f")
+        await press(pilot, "f")
         await pilot.pause()
         assert panel.frame == TOOL and "TOOL" in str(panel.border_title)
         assert "TOOL frame" in str(app.screen.query_one("#status").render())
         rows = str(panel.render()).splitlines()
         assert rows[0].startswith("▶ x  tool x = (")
         assert panel.check_action("frame", ("world",))
-        await pilot.press("f")
+        await press(pilot, "f")
         await pilot.pause()
         assert screen.query_one(CartesianPanel).frame == WORLD and "WORLD" in str(
             panel.border_title
@@ -168,7 +169,7 @@ async def test_the_frame_shows_in_ascii_mode_too():
     app = puma_app(ascii=True)
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
-        await pilot.press("c", "f")
+        await press(pilot, "c", "f")
         await pilot.pause()
         panel = app.screen.query_one(CartesianPanel)
         assert "TOOL frame" in str(panel.border_title)
@@ -182,7 +183,7 @@ async def test_the_palette_switches_the_frame_and_cartesian_mode_on():
         screen = await go_start(pilot)
         command = next(c for c in commands_for(app, screen) if c.title == "Jog in the tool frame")
         command.run()
-        await pilot.pause()
+        await until(pilot, lambda: screen.cartesian, "Cartesian mode")
         assert screen.cartesian and screen.query_one(CartesianPanel).frame == TOOL
         titles = [c.title for c in commands_for(app, screen)]
         assert "Jog in the world frame" in titles and "Jog in the tool frame" not in titles
@@ -193,11 +194,8 @@ async def test_typing_a_tool_z_distance_moves_that_far_along_the_approach():
     async with app.run_test(size=(80, 24)) as pilot:
         await go_start(pilot)
         before = tool_pose(app)
-        await pilot.press("c", "f", "down", "down", "enter", "ctrl+u", *"-25", "enter")
-        for _ in range(20):
-            await pilot.pause()
-            if app.screen.q != GOOD:
-                break
+        await press(pilot, "c", "f", "down", "down", "enter", "ctrl+u", *"-25", "enter")
+        await until(pilot, lambda: app.screen.q != GOOD, "the typed move")
         after = tool_pose(app)
         assert np.allclose(
             after[:3, 3] - before[:3, 3], -25.0 * before[:3, 2], atol=1e-6 * reach(app.robot)
@@ -209,11 +207,11 @@ async def test_the_frame_and_a_branch_read_without_colour(monkeypatch):
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
-        await pilot.press("c", "f", "b")
-        for _ in range(100):
-            await pilot.pause(0.02)
-            if not screen.finding_branches and screen.q != GOOD:
-                break
+        await press(pilot, "c", "f", "b")
+        await until(
+            pilot, lambda: not screen.finding_branches and screen.q != GOOD, "the next branch"
+        )
+        await until(pilot, lambda: settled(app), "the next branch drawn")
         panel = app.screen.query_one(CartesianPanel)
         assert "TOOL frame" in str(panel.border_title)
         assert "branch 2/" in str(app.screen.query_one("#status").render())

@@ -10,7 +10,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
-from pilot_helpers import until
+from pilot_helpers import press, started, until
 from textual import events
 
 from dhsim_tui.core import load_robot
@@ -38,7 +38,7 @@ async def test_a_pose_name_typed_right_after_P_is_the_name_saved(tmp_path):
     path = robot_copy(tmp_path)
     app = DhsimApp(*load_with_stamp(path)[:1], path, animate=False)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         burst(app, "right", "P", "ctrl+u", "l", "a", "b", "4", "enter", "right")
         await until(
             pilot,
@@ -59,7 +59,7 @@ async def test_a_value_typed_right_after_enter_lands_in_the_editor_cell(tmp_path
     robot, stamp = load_with_stamp(path)
     app = DhsimApp(robot, path, start="edit", animate=False, stamp=stamp)
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         editor = app.screen
         assert isinstance(editor, EditorScreen)
         # row 1, column "a" (the cursor starts on theta: theta, d, a): type -14 at once
@@ -93,6 +93,6 @@ async def test_keys_in_flight_as_the_screens_go_at_quit_do_nothing():
             assert app._held == []
         finally:
             stacks[mode] = kept
-        await pilot.press("right")
+        await press(pilot, "right")
         await pilot.pause()
         assert app.return_code is None and app.screen.q[0] != 0.0

@@ -5,6 +5,7 @@ never wraps, and the axis colours in every colour depth."""
 from __future__ import annotations
 
 import pytest
+from pilot_helpers import press, started, until
 from rich.color import ColorSystem
 from rich.console import Console
 from rich.segment import Segment
@@ -35,7 +36,7 @@ def per_column(view: ArmView) -> float:
 async def test_four_views_in_a_grid_at_one_scale_from_120x36():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         shown = [v for v in views(app) if v.display and v.size.area]
         assert [v.view.key for v in shown] == ["top", "front", "side", "iso"]
         sizes = {v.size for v in shown}
@@ -54,29 +55,29 @@ async def test_four_views_in_a_grid_at_one_scale_from_120x36():
 async def test_one_view_at_80x24_and_tab_cycles_all_four():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         seen = []
         for _ in range(4):
             shown = [v.view.key for v in views(app) if v.display and v.size.area]
             seen.append(shown)
-            await pilot.press("tab")
+            await press(pilot, "tab")
         assert seen == [["front"], ["side"], ["iso"], ["top"]]
-        await pilot.press("4")
+        await press(pilot, "4")
         assert [v.view.key for v in views(app) if v.display and v.size.area] == ["iso"]
 
 
 async def test_z_maximises_the_selected_view_and_restores_it():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
         before = front.size
-        await pilot.press("z")
+        await press(pilot, "z")
         await pilot.pause()
         assert front.size.width > 2 * before.width - 10 and front.size.height > before.height
         assert not app.screen.query_one("#side-panel").display
         assert [v.view.key for v in views(app) if v.display and v.size.area] == ["front"]
-        await pilot.press("z")
+        await press(pilot, "z")
         await pilot.pause()
         assert front.size == before
 
@@ -84,11 +85,11 @@ async def test_z_maximises_the_selected_view_and_restores_it():
 async def test_zoom_about_the_arm_and_back_to_the_work_area():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
         whole = per_column(front)
         default_xlim = front.picture.xlim
-        await pilot.press("plus", "plus")
+        await press(pilot, "plus", "plus")
         await pilot.pause()
         assert per_column(front) == pytest.approx(whole / 1.5**2)
         panel = app.screen.query_one(ViewsPanel)
@@ -96,10 +97,10 @@ async def test_zoom_about_the_arm_and_back_to_the_work_area():
         xlim = front.picture.xlim
         assert xlim[0] < centre[0] < xlim[1]  # about the arm
         assert "zoom 2.25x" in str(front.border_subtitle)
-        await pilot.press("minus")
+        await press(pilot, "minus")
         await pilot.pause()
         assert per_column(front) == pytest.approx(whole / 1.5)
-        await pilot.press("0")
+        await press(pilot, "0")
         await pilot.pause()
         assert per_column(front) == pytest.approx(whole)
         assert front.picture.xlim == pytest.approx(default_xlim)
@@ -109,14 +110,14 @@ async def test_zoom_about_the_arm_and_back_to_the_work_area():
 async def test_orbit_keys_turn_the_3d_view():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
-        await pilot.press("d")  # shows the 3-D view and turns it
+        await started(pilot)
+        await press(pilot, "d")  # shows the 3-D view and turns it
         await pilot.pause()
         iso = app.screen.query_one("#view-iso", ArmView)
         assert iso.display and iso.size.area
         assert "az 60° el 35°" in str(iso.border_subtitle)
         before = iso.picture.lines
-        await pilot.press("w", "w")
+        await press(pilot, "w", "w")
         await pilot.pause()
         assert "az 60° el 65°" in str(iso.border_subtitle)
         assert iso.picture.lines != before
@@ -126,7 +127,7 @@ async def test_orbit_keys_turn_the_3d_view():
 async def test_the_legend_and_views_fill_the_panel_without_wrapping(size):
     app = make_app()
     async with app.run_test(size=size) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         legend = panel.query_one(".legend")
         if legend.display:
@@ -181,14 +182,19 @@ async def test_the_ansi_theme_hands_the_terminal_its_own_colours():
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, theme="ansi")
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
         styles = front._styles
         for role, name in (("x", "bright_red"), ("y", "bright_green"), ("z", "bright_blue")):
             colour = styles[CELL_ROLES.index(role)].color
             assert colour.is_system_defined and colour.name == name
         app.theme = "dhsim-dark"  # and back: real blue again
-        await pilot.pause()
+        z = CELL_ROLES.index("z")
+        await until(
+            pilot,
+            lambda: front._styles is None or not front._styles[z].color.is_system_defined,
+            "the views restyled",
+        )
         front.render_line(0)
         assert not front._styles[CELL_ROLES.index("z")].color.is_system_defined
 
@@ -201,7 +207,7 @@ async def test_the_editors_preview_shows_the_legend_only_when_it_fits(size):
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, start="edit")
     async with app.run_test(size=size) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         legend = panel.query_one(".legend")
         essentials = len("━ links  ● joint  ◆ tool")

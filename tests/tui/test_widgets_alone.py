@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from pilot_helpers import press, started, until
 from textual.app import App, ComposeResult
 from textual.message import Message
 
@@ -75,7 +76,7 @@ async def test_the_joint_panel_selects_itself_and_asks_for_steps_values_and_size
     async with app.run_test(size=(60, 12)) as pilot:
         panel = app.query_one(JointPanel)
         assert app.focused is panel  # it takes focus: its keys are its own
-        await pilot.press("down", "down", "right", "shift+left", "left_square_bracket", "enter")
+        await press(pilot, "down", "down", "right", "shift+left", "left_square_bracket", "enter")
         await pilot.pause()
         assert panel.selected == 2
         kinds = [(type(m).__name__, getattr(m, "index", None)) for m in app.seen]
@@ -87,7 +88,7 @@ async def test_the_joint_panel_selects_itself_and_asks_for_steps_values_and_size
         ]
         assert [m.steps for m in app.seen[:2]] == [1, -10]
         assert isinstance(app.seen[2], StepSizeRequested) and app.seen[2].delta == -1
-        await pilot.press("up", "up", "up")  # wraps from the first joint to the last
+        await press(pilot, "up", "up", "up")  # wraps from the first joint to the last
         assert panel.selected == ROBOT.dof - 1
 
 
@@ -106,7 +107,11 @@ async def test_a_click_on_a_bar_asks_for_the_value_under_the_pointer():
     async with app.run_test(size=(60, 40)) as pilot:
         row = app.query(JointRow)[3]
         await pilot.click(row, offset=(20, 0))
-        await pilot.pause()
+        await until(
+            pilot,
+            lambda: any(isinstance(m, JointPanel.ValueRequested) for m in app.seen),
+            "the value asked for",
+        )
         assert app.query_one(JointPanel).selected == 3
         (asked,) = [m for m in app.seen if isinstance(m, JointPanel.ValueRequested)]
         assert asked.index == 3 and row.joint.min < asked.value < row.joint.max
@@ -119,12 +124,12 @@ async def test_the_cartesian_panel_owns_its_row_and_frame():
         panel.focus()
         await pilot.pause()
         assert panel.check_action("frame", (TOOL,)) and not panel.check_action("frame", (WORLD,))
-        await pilot.press("down", "right", "f")
+        await press(pilot, "down", "right", "f")
         await pilot.pause()
         jog, changed = app.seen
         assert (jog.row, jog.steps, jog.frame) == (1, 1, WORLD)
         assert changed.frame == TOOL == panel.frame and "TOOL" in str(panel.border_title)
-        await pilot.press("shift+left")
+        await press(pilot, "shift+left")
         await pilot.pause()
         assert (app.seen[-1].row, app.seen[-1].steps, app.seen[-1].frame) == (1, -10, TOOL)
 
@@ -148,21 +153,19 @@ async def test_the_views_panel_works_on_its_own_with_keys_and_the_mouse():
         views = app.query_one(ViewsPanel)
         views.show(build_wireframe(ROBOT, ROBOT.kinematics.frames(ROBOT.home)))
         await pilot.pause()
-        await pilot.press("3", "z", "x", "plus", "F")
+        await press(pilot, "3", "z", "x", "plus", "F")
         await pilot.pause()
         assert views.selected == 2 and views.maximised and views.frames != "all" and views.fit
-        await pilot.press("z", "0")
+        await press(pilot, "z", "0")
         assert not views.maximised and not views.fit and views.zoom == 1.0
         azimuth = views.orbit.azimuth
-        await pilot.press("d")
+        await press(pilot, "d")
         assert views.orbit.azimuth != azimuth and views.selected == 2  # all four are shown
         iso = views.views[3]
         await pilot.click(iso)
-        await pilot.pause()
-        assert views.selected == 3
+        await until(pilot, lambda: views.selected == 3, "the 3-D view selected")
         await pilot.click(iso, times=2)
-        await pilot.pause()
-        assert views.maximised
+        await until(pilot, lambda: views.maximised, "the 3-D view maximised")
         kinds = {type(m).__name__ for m in app.seen}
         assert kinds == {"Selected", "Maximised"}
 
@@ -175,7 +178,7 @@ async def test_the_legend_and_help_are_the_bindings_in_effect():
             self.push_screen(app_screen)
 
     async with One().run_test(size=(160, 48)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         screen = app_screen
         in_effect = bindings_in_effect(screen)
         ids = {b.id for b in in_effect}
@@ -184,7 +187,7 @@ async def test_the_legend_and_help_are_the_bindings_in_effect():
         legend = str(screen.query_one(KeyHints).render())
         for _keys, words in legend_rows(in_effect):
             assert words in legend, words
-        await pilot.press("c")
+        await press(pilot, "c")
         await pilot.pause()
         ids = {b.id for b in bindings_in_effect(screen)}
         assert {"cartesian.prev", "cartesian.tool_frame", "mode.joints"} <= ids
@@ -202,16 +205,16 @@ async def test_the_arrows_still_jog_while_a_view_is_maximised_or_the_terminal_wa
             self.push_screen(app_screen)
 
     async with One().run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
-        await pilot.press("z", "right")
+        await started(pilot)
+        await press(pilot, "z", "right")
         await pilot.pause()
         assert app_screen.query_one(ViewsPanel).maximised and app_screen.q != ROBOT.home
         moved = app_screen.q
         await pilot.resize_terminal(40, 10)
-        await pilot.pause()
+        await until(pilot, lambda: app_screen.has_class("-too-small"), "the too-small layout")
         await pilot.resize_terminal(120, 36)
-        await pilot.pause()
-        await pilot.press("right")
+        await until(pilot, lambda: not app_screen.has_class("-too-small"), "the usual layout")
+        await press(pilot, "right")
         await pilot.pause()
         assert app_screen.q != moved and app_screen.focused is app_screen.query_one(JointPanel)
 

@@ -9,6 +9,7 @@ import dataclasses
 import numpy as np
 import pytest
 from conftest import reference_frames
+from pilot_helpers import press, started
 from rich.console import Console
 from rich.segment import Segment
 from rich.style import Style
@@ -270,7 +271,7 @@ def _shown(app) -> list[ArmView]:
 async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it():
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         legend = panel.query_one(".legend")
         before = {v.view.key: v.picture for v in _shown(app)}
@@ -285,17 +286,17 @@ async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it
             assert _assert_cloud_only_behind(before[view.view.key], view.picture, Look()) > 20
         builds = {v.view.key: v._cloud_layer.builds for v in _shown(app)}
         # the arm moves: the cloud's cells are laid again, not made again
-        await pilot.press("right", "right", "left", "left")
+        await press(pilot, "right", "right", "left", "left")
         await pilot.pause()
         assert {v.view.key: v._cloud_layer.builds for v in _shown(app)} == builds
         for view in _shown(app):
             assert _assert_cloud_only_behind(before[view.view.key], view.picture, Look()) > 20
         # orbiting turns the 3-D view's cloud (made again there only)
-        await pilot.press("a")
+        await press(pilot, "a")
         await pilot.pause()
         after_orbit = {v.view.key: v._cloud_layer.builds for v in _shown(app)}
         assert after_orbit == {**builds, "iso": builds["iso"] + 1}
-        await pilot.press("d")
+        await press(pilot, "d")
         await pilot.pause()
         panel.set_cloud(None)
         await pilot.pause()
@@ -309,7 +310,7 @@ async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it
 async def test_the_cloud_in_ascii_mode_is_dots():
     app = make_app(ascii=True)
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         panel.set_cloud(sample_positions(app.screen.robot, 5000))
         await pilot.pause()
@@ -329,7 +330,7 @@ async def test_the_cloud_without_colour_is_a_dim_dot_pattern(monkeypatch):
     monkeypatch.setenv("NO_COLOR", "1")
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         panel.set_cloud(sample_positions(app.screen.robot, 5000))
         await pilot.pause()
@@ -345,7 +346,7 @@ async def test_the_cloud_without_colour_is_a_dim_dot_pattern(monkeypatch):
 async def test_a_cloud_set_before_the_arm_is_shown_and_empty_clouds_are_harmless():
     app = make_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await pilot.pause()
+        await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
         panel.set_cloud(np.empty((0, 3)))
         await pilot.pause()

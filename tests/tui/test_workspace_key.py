@@ -6,7 +6,7 @@ from __future__ import annotations
 import threading
 
 import numpy as np
-from pilot_helpers import until
+from pilot_helpers import HANG, press, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.analysis import workspace
@@ -38,7 +38,8 @@ def status(app) -> str:
 
 
 class Gate:
-    """position_chunks held at a gate: the sampling takes as long as the test says."""
+    """position_chunks held at a gate: the sampling takes as long as the test says,
+    however long its keys take on a busy machine."""
 
     def __init__(self, monkeypatch) -> None:
         self.open = threading.Event()
@@ -48,7 +49,7 @@ class Gate:
         def held(*args, **kwargs):
             self.calls += 1
             for chunk in real(*args, **kwargs):
-                self.open.wait(5)
+                self.open.wait(HANG)  # (HANG: only a test that failed leaves it shut)
                 yield chunk
 
         monkeypatch.setattr(workspace, "position_chunks", held)
@@ -59,7 +60,7 @@ async def test_w_shows_and_hides_the_workspace_cloud():
     async with app.run_test(size=(80, 24)) as pilot:
         screen, views = await started(pilot)
         assert views.cloud is None and screen.cloud_state == "off"
-        await pilot.press("W")
+        await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "on", "the cloud")
         await pilot.pause()
         assert views.cloud is not None and views.cloud.shape == (CLOUD_POINTS, 3)
@@ -68,7 +69,7 @@ async def test_w_shows_and_hides_the_workspace_cloud():
         base = app.robot.kinematics.frames(app.robot.home)[0][:3, 3]
         distances = np.linalg.norm(views.cloud - base, axis=1)
         assert distances.max() <= workspace.reach(app.robot) * (1 + 1e-9)
-        await pilot.press("W")
+        await press(pilot, "W")
         await pilot.pause()
         assert views.cloud is None and screen.cloud_state == "off"
         assert "workspace cloud off" in status(app)
@@ -80,10 +81,10 @@ async def test_keys_go_on_while_the_cloud_is_sampled(monkeypatch):
     async with app.run_test(size=(80, 24)) as pilot:
         screen, views = await started(pilot)
         home = screen.q
-        await pilot.press("W")
+        await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "computing", "the sampling")
         assert "sampling the workspace" in status(app)
-        await pilot.press("right", "3", "v")  # a joint step, the side view, a read-out
+        await press(pilot, "right", "3", "v")  # a joint step, the side view, a read-out
         await pilot.pause()
         assert (
             screen.q != home
@@ -95,7 +96,7 @@ async def test_keys_go_on_while_the_cloud_is_sampled(monkeypatch):
         await until(pilot, lambda: screen.cloud_state == "on", "the cloud")
         await pilot.pause()
         assert views.cloud is not None
-        await pilot.press("W", "W")  # off, and on again: the points were kept
+        await press(pilot, "W", "W")  # off, and on again: the points were kept
         await pilot.pause()
         assert screen.cloud_state == "on" and views.cloud is not None and gate.calls == 1
 
@@ -105,9 +106,9 @@ async def test_w_again_while_sampling_never_shows_the_cloud(monkeypatch):
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
         screen, views = await started(pilot)
-        await pilot.press("W")
+        await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "computing", "the sampling")
-        await pilot.press("W")
+        await press(pilot, "W")
         await pilot.pause()
         assert screen.cloud_state == "off"
         gate.open.set()
@@ -142,7 +143,7 @@ async def test_w_b_and_f_are_in_the_help_and_have_tooltips():
         keys = {b.key: b for b in [*screen.BINDINGS, *CartesianPanel.BINDINGS]}
         for key in ("W", "b", "f"):
             assert keys[key].id and keys[key].tooltip
-        await pilot.press("question_mark")
+        await press(pilot, "question_mark")
         await pilot.pause()
         assert isinstance(app.screen, HelpScreen)
         rows = dict(app.screen._rows)
