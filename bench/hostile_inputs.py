@@ -3,7 +3,9 @@
     python bench/hostile_inputs.py [--runs 3] [--only TEXT] [--json]
 
 Builds the files of ``tests/cli/test_hostile_files.py`` (robot files whose
-one key or table header has 100,000 dotted parts) and of
+one key or table header has 100,000 dotted parts), of
+``tests/cli/test_hostile_counts.py`` (25,000 table headers of 16 parts,
+40,000 poses, an 800 KB multi-line string) and of
 ``tests/core/test_import_limits.py`` and ``tests/core/test_urdf.py``
 (CSV and URDF files built to waste time and memory) in a temporary folder,
 and times each refusal in a fresh interpreter, as the tests measure its
@@ -17,6 +19,8 @@ memory:
   bad cell of a long CSV); a careless reader took 15 s and 718 MB.
 * memory, for both: the growth of the peak resident size (``ru_maxrss``)
   over the step. Target: <= 100 MB.
+* a command line of 30,000 unknown options (``tests/cli/test_hostile_cli.py``):
+  ``cli.main.main``. Target: <= 0.2 s (argparse took 61 s and printed 150 KB).
 
 Prints the median wall-clock time of N runs, the median CPU time (the
 machine may be shared: wall-clock time then includes waiting for a CPU, CPU
@@ -62,7 +66,7 @@ path = Path(sys.argv[1])
 
 def check():
     err = io.StringIO()
-    with contextlib.redirect_stderr(err):
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
         code = main(["check", str(path)])
     return "refused" if code == 2 and len(err.getvalue().strip().splitlines()) == 1 else "CHECKED"
 
@@ -88,6 +92,24 @@ for step, call in (("check", check), ("open", opened), ("save over", saved)):
         "megabytes": (rss() - before) / 1024,
     })
 print(json.dumps(steps))
+"""
+
+CLI_CHILD = """
+import contextlib, io, json, resource, sys, time
+from dhsim_tui.cli.main import main
+
+argv = ["fk", "puma560", *(f"--option{i}" for i in range(30_000))]
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+wall, cpu = time.perf_counter(), time.process_time()
+err = io.StringIO()
+with contextlib.redirect_stderr(err):
+    code = main(argv)
+short = code == 2 and len(err.getvalue()) < 300
+print(json.dumps([{
+    "step": "parse", "outcome": "refused" if short else "LONG MESSAGE",
+    "seconds": time.perf_counter() - wall, "cpu": time.process_time() - cpu,
+    "megabytes": (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) / 1024,
+}]))
 """
 
 IMPORT_CHILD = """
@@ -118,6 +140,13 @@ ROBOT_FILES = {
     "key.toml": 'name = "n"\n' + ".".join(["a"] * PARTS) + " = 1\n",
     "header.toml": 'name = "n"\n[' + ".".join(["a"] * PARTS) + "]\n",
     "array-header.toml": 'name = "n"\n[[' + ".".join(["a"] * PARTS) + "]]\n",
+    # test_hostile_counts.py's: counts no robot needs, each file under 1 MB
+    "wide-headers.toml": 'name = "n"\n'
+    + "".join(f"[h{i}" + ".a" * 15 + "]\n" for i in range(25_000)),
+    "poses.toml": 'name = "n"\n[poses]\n'
+    + "".join(f"p{i} = [0]\n" for i in range(40_000))
+    + "[[joints]]\ntheta = 0\nd = 0\na = 100\nalpha = 0\n",
+    "string.toml": 'name = """' + ("x" * 70 + "\n") * 11_000 + '"""\n',
 }
 assert PARTS > MAX_KEY_PARTS
 
@@ -244,7 +273,8 @@ def cases() -> list[Case]:
         ),
         Case("urdf: entity bomb (10**9 a's)", "bomb.urdf", _text(_entity_bomb()), IMPORT_SECONDS),
     ]
-    return robot + imports
+    cli = [Case("cli: 30,000 unknown options", "none", lambda path: None, ROBOT_SECONDS, CLI_CHILD)]
+    return robot + imports + cli
 
 
 # -- measuring ---------------------------------------------------------------------------
@@ -280,7 +310,7 @@ def measure(case: Case, folder: Path, runs: int) -> list[dict]:
         rows.append(
             {
                 "case": case.name
-                if case.child is IMPORT_CHILD
+                if case.child in (IMPORT_CHILD, CLI_CHILD)
                 else f"{case.name}: {first['step']}",
                 "outcome": "/".join(outcomes),
                 "seconds": round(seconds, 4),

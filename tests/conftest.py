@@ -112,8 +112,10 @@ def in_tmp(tmp_path, monkeypatch):
 #: the rest are the core's, the scene's and the command line's, which .ci/run
 #: also runs under every Python it finds
 UI_FOLDERS = ("tui", "pty")
-#: folders whose every test is ``slow``: the real dhsim in a pseudo-terminal
-SLOW_FOLDERS = ("pty",)
+#: folders whose every test is ``slow``: the whole app driven by Pilot, and the
+#: real dhsim in a pseudo-terminal (together four fifths of the suite's time:
+#: each starts the app and waits on it); ``-m "not slow"`` is the quick loop
+SLOW_FOLDERS = ("tui", "pty")
 
 #: variables of the user's session that change what dhsim does; the tests
 #: run without them, whatever shell started pytest (a test that wants one
@@ -173,8 +175,8 @@ def pytest_configure(config):
 
 def pytest_collection_modifyitems(config, items):
     """Mark every test in a UI folder ``ui`` (``-m "not ui"`` runs the core's,
-    the scene's and the command line's alone) and every pseudo-terminal test
-    ``slow``."""
+    the scene's and the command line's alone) and every test of the whole
+    app (Pilot, a pseudo-terminal) ``slow``."""
     for item in items:
         if item.path.parent.name in UI_FOLDERS:
             item.add_marker(pytest.mark.ui)

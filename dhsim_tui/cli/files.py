@@ -15,6 +15,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
+from dhsim_tui.cli import streams
 from dhsim_tui.core.files.formats import EXPORT_FORMATS
 from dhsim_tui.core.files.library import load_robot
 from dhsim_tui.core.files.robotfile import dumps, save
@@ -64,7 +65,10 @@ def _check_robot_output(out: str | None, force: bool) -> None:
 
 def _tell(lines: tuple[str, ...], to_stderr: bool) -> None:
     for line in lines:
-        print(printable(line), file=sys.stderr if to_stderr else sys.stdout)
+        if to_stderr:  # stdout carries the result: a remark never goes there
+            streams.to_stderr(printable(line))
+        else:
+            print(printable(line))
 
 
 # Each command loads its part of the core when it runs: ``dhsim`` itself

@@ -5,10 +5,16 @@ scripts and must start fast); only opening the simulator does, and only when
 stdin and stdout are a terminal. Every bad input ends as one line on stderr
 and exit status 2, never a traceback; an unexpected error as one line and
 exit status 1. Whatever the line quotes from the user or a file is passed
-through :func:`printable`, so no control character reaches the terminal.
-Output that cannot be written (a full disk, standard output closed) is one
-line and status 2 as well; a reader that stops early (``dhsim list | head
--1``) is not an error. An option given twice is refused, not overridden.
+through :func:`printable`, so no control character reaches the terminal, and
+every argument it quotes is shortened in the middle past
+:data:`SHOWN_ARGUMENT` characters. More than :data:`MAX_ARGUMENTS`
+arguments are refused before argparse sees them (its time grows with the
+square of their number: 30,000 took a minute). Output that cannot be
+written (a full disk, standard output closed) is one line and status 2 as
+well; a reader that stops early (``dhsim list | head -1``) is not an error.
+Errors go to stderr only (:mod:`dhsim_tui.cli.streams`): with stderr closed
+or full, the line is lost but the exit status is kept, and nothing meant
+for stderr lands on stdout. An option given twice is refused, not overridden.
 """
 
 from __future__ import annotations
@@ -27,16 +33,27 @@ from dhsim_tui.cli.files import subparsers as files_subparsers
 from dhsim_tui.cli.kinematics import VALUE_OPTIONS
 from dhsim_tui.cli.kinematics import subparsers as kinematics_subparsers
 from dhsim_tui.cli.run import subparsers as run_subparsers
+from dhsim_tui.cli.streams import hold_closed_stderr, silence, to_stderr
 from dhsim_tui.cli.workspace import subparsers as workspace_subparsers
 from dhsim_tui.core.files.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
 from dhsim_tui.core.files.robotfile import load_with_stamp
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.text import printable
+from dhsim_tui.core.model.text import SHOWN_CHARS, printable, shortened
 from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 1
 EXIT_INTERRUPTED = 130
+#: the most arguments one command line may have: a command takes fewer than
+#: 20, and argparse's time grows with the square of their number
+MAX_ARGUMENTS = 1_000
+#: the most characters of one argument an error quotes (its start and end):
+#: as many as of a name from a file
+SHOWN_ARGUMENT = SHOWN_CHARS
+#: the unrecognised arguments an error lists before "and N more"
+LISTED_ARGUMENTS = 3
+#: the longest error line (a last resort: arguments are shortened before)
+MAX_ERROR_CHARS = 1_000
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
     "fk, ik, check, list, import, export, convert, workspace and draw work without one"
@@ -71,8 +88,42 @@ class _Parser(argparse.ArgumentParser):
         self.register("action", None, _StoreOnce)
         self.register("action", "store", _StoreOnce)
 
+    def parse_known_args(self, args=None, namespace=None):
+        self._given = list(sys.argv[1:] if args is None else args)
+        return super().parse_known_args(self._given, namespace)
+
+    def parse_args(self, args=None, namespace=None):  # the unknown ones listed shortened
+        namespace, extras = self.parse_known_args(args, namespace)
+        if extras:
+            self.error(f"unrecognized arguments: {_listed(extras)}")
+        return namespace
+
     def error(self, message: str):  # one line, no usage dump
+        message = shortened_arguments(message, getattr(self, "_given", ()))
         raise UsageError(f"{self.prog}: error: {message} (see '{self.prog} --help')")
+
+
+def _listed(arguments: Sequence[str]) -> str:
+    """``--a --b --c and 29,997 more``: the first few, each shortened."""
+    shown = " ".join(shortened(a, SHOWN_ARGUMENT) for a in arguments[:LISTED_ARGUMENTS])
+    more = len(arguments) - LISTED_ARGUMENTS
+    return f"{shown} and {more:,} more" if more > 0 else shown
+
+
+def shortened_arguments(message: str, arguments: Sequence[str]) -> str:
+    """``message`` with every argument of more than :data:`SHOWN_ARGUMENT`
+    characters it quotes (as given, in quotes, or escaped) shortened in the
+    middle: ``'xxxxxxxxxxxxxxxxxxxxxxxxxxxx … xxxxxxxxxxxxxxxxxxxxxxxxxxxxx'``."""
+    for argument in sorted({a for a in arguments if len(a) > SHOWN_ARGUMENT}, key=len)[::-1]:
+        short = shortened(argument, SHOWN_ARGUMENT)
+        for given, shown in (
+            (repr(argument), repr(short)),
+            (printable(argument), printable(short)),
+            (argument, short),
+        ):
+            if len(given) > len(shown) and given in message:
+                message = message.replace(given, shown)
+    return message
 
 
 class _Output:
@@ -137,7 +188,7 @@ def cmd_list(args: argparse.Namespace) -> int:
         try:
             robot, _ = load_robot(name)
         except DhsimError as exc:
-            print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
+            to_stderr(f"dhsim: error: {printable(str(exc))}")
             status = EXIT_USAGE
             continue
         print(printable(f"{name:<17} {describe(robot)}"))
@@ -306,11 +357,11 @@ INTERACTIVE = (cmd_run, cmd_edit, cmd_new)
 
 def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
+    hold_closed_stderr()
     _escape_unencodable(sys.stdout)
     _escape_unencodable(sys.stderr)
     if sys.stdout is None:  # started with descriptor 1 closed (`dhsim ... >&-`)
-        if sys.stderr is not None:
-            print("dhsim: cannot write the output: standard output is closed", file=sys.stderr)
+        to_stderr("dhsim: cannot write the output: standard output is closed")
         return EXIT_USAGE
     stdout = sys.stdout
     sys.stdout = _Output(stdout)  # type: ignore[assignment]
@@ -323,6 +374,11 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _command(args_list: list[str], stdout) -> int:
     """Parse the command line and run the command; its exit status."""
+    if len(args_list) > MAX_ARGUMENTS:
+        raise UsageError(
+            f"dhsim: error: {len(args_list):,} arguments; a command takes at most "
+            f"{MAX_ARGUMENTS:,} (see 'dhsim --help')"
+        )
     if args_list and args_list[0] in ("-h", "--help"):
         print(MAIN_HELP)
         return 0
@@ -341,7 +397,7 @@ def _command(args_list: list[str], stdout) -> int:
     if args.func in INTERACTIVE:
         sys.stdout = stdout  # the simulator's terminal, as it was given
         if not has_terminal():
-            print(NEEDS_TERMINAL, file=sys.stderr)
+            to_stderr(NEEDS_TERMINAL)
             return EXIT_USAGE
     with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
         return args.func(args)
@@ -354,10 +410,10 @@ def _run(args_list: list[str], stdout) -> int:
         sys.stdout.flush()  # a closed pipe or a full disk shows here, not at exit
         return status
     except UsageError as exc:
-        print(printable(str(exc)), file=sys.stderr)
+        to_stderr(_error_line(str(exc), args_list))
         return EXIT_USAGE
     except DhsimError as exc:
-        print(f"dhsim: error: {printable(str(exc))}", file=sys.stderr)
+        to_stderr(_error_line(f"dhsim: error: {exc}", args_list))
         return EXIT_USAGE
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
@@ -366,14 +422,17 @@ def _run(args_list: list[str], stdout) -> int:
         return 0
     except OutputError as exc:  # e.g. `dhsim fk puma560 > /dev/full`
         _silence_stdout()  # what is still buffered goes nowhere at exit, quietly
-        print(f"dhsim: cannot write the output: {exc}", file=sys.stderr)
+        to_stderr(f"dhsim: cannot write the output: {exc}")
         return EXIT_USAGE
     except Exception as exc:  # the last resort: one line and a failure status
-        print(
-            f"dhsim: internal error: {printable(f'{type(exc).__name__}: {exc}')}",
-            file=sys.stderr,
-        )
+        to_stderr(_error_line(f"dhsim: internal error: {type(exc).__name__}: {exc}", args_list))
         return EXIT_INTERNAL
+
+
+def _error_line(message: str, args_list: Sequence[str]) -> str:
+    """The line an error prints: the arguments it quotes shortened, control
+    characters escaped, and never more than :data:`MAX_ERROR_CHARS` characters."""
+    return printable(shortened(shortened_arguments(message, args_list), MAX_ERROR_CHARS))
 
 
 def _escape_unencodable(stream: object) -> None:
@@ -385,6 +444,4 @@ def _escape_unencodable(stream: object) -> None:
 
 def _silence_stdout() -> None:
     """After a closed pipe, send what Python still flushes at exit nowhere."""
-    with contextlib.suppress(AttributeError, ValueError, OSError):
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
+    silence(sys.stdout)

@@ -24,6 +24,7 @@ import sys
 from pathlib import Path
 
 from dhsim_tui.cli.kinematics import parse_values
+from dhsim_tui.cli.streams import to_stderr
 from dhsim_tui.core.files.atomicfile import write_file
 from dhsim_tui.core.files.library import load_robot
 from dhsim_tui.core.model.errors import DhsimError
@@ -152,11 +153,12 @@ def cmd_program(args: argparse.Namespace) -> int:
     start = start_joints(robot, args.start)
     trajectory = sample(robot, program, args.rate, start)
     problems = check_path(trajectory)
-    report = sys.stderr if args.csv == "-" else sys.stdout
     if args.json:
         print(run_json(trajectory, problems))
+    elif args.csv == "-":  # stdout carries the CSV: the report never goes there
+        to_stderr(format_run(trajectory, problems))
     else:
-        print(format_run(trajectory, problems), file=report)
+        print(format_run(trajectory, problems))
     if args.csv is not None:
         from dhsim_tui.core.motion.trajectory_csv import csv_text
 
@@ -165,7 +167,11 @@ def cmd_program(args: argparse.Namespace) -> int:
             sys.stdout.write(text)
         else:
             write_file(args.csv, text.encode("utf-8"), overwrite=args.force)
-            print(printable(f"wrote {args.csv}"), file=sys.stderr if args.json else sys.stdout)
+            wrote = printable(f"wrote {args.csv}")
+            if args.json:  # stdout carries the JSON
+                to_stderr(wrote)
+            else:
+                print(wrote)
     if args.plot:
         from dhsim_tui.render.program_plot import plot_text  # plotext: loaded when asked for
 

@@ -8,8 +8,11 @@ and any long name or key shortened in the middle. One UTF-8 byte order mark
 is accepted (not two). Before the TOML parser sees a file, it is scanned for
 what would make the parser slow or greedy (a key of thousands of dotted
 parts takes Python's parser minutes and gigabytes): a key path of more than
-:data:`~dhsim_tui.core.files.tomlparse.MAX_KEY_PARTS` parts or a line of more
-than :data:`~dhsim_tui.core.files.tomlparse.MAX_LINE_CHARS` characters is
+:data:`~dhsim_tui.core.files.tomlparse.MAX_KEY_PARTS` parts, a line of more
+than :data:`~dhsim_tui.core.files.tomlparse.MAX_LINE_CHARS` characters, a
+multi-line string of more than
+:data:`~dhsim_tui.core.files.tomlparse.MAX_STRING_CHARS` characters, or more
+table headers, poses, programs, keys or values in lists than any robot has, is
 refused, naming the line (:mod:`dhsim_tui.core.files.tomlparse`). A URDF or a
 CSV given as a robot file is named as such, with the ``dhsim import`` command
 that reads it.

@@ -31,6 +31,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from dhsim_tui.core.files.tomlparse import MAX_POSES as ROBOT_FILE_POSES
 from dhsim_tui.core.interop.convert import convert
 from dhsim_tui.core.interop.imported import ImportResult, check_choice, quoted
 from dhsim_tui.core.model.editing import parse_number
@@ -51,7 +52,7 @@ from dhsim_tui.core.model.text import counted, printable, shortened
 #: a 32-joint table with a thousand named poses is well under 1 MB
 MAX_CSV_BYTES = 2_000_000
 #: named poses a CSV may hold
-MAX_POSES = 10_000
+MAX_POSES = ROBOT_FILE_POSES  # what a robot file may hold, so an import can be saved
 #: a cell longer than this is no number
 MAX_NUMBER_CHARS = 100
 _COLUMNS = ("joint", "type", "theta", "d", "a", "alpha", "offset", "min", "max")

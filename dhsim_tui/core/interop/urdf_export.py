@@ -257,8 +257,7 @@ class _Urdf:
 def _xml_safe(text: str) -> str:
     """``text`` with control characters escaped (:func:`printable`) and any
     character XML 1.0 cannot hold (U+FFFE, U+FFFF) written as ``\\uXXXX``."""
-    text = printable(text)
-    return "".join(f"\\u{ord(c):04x}" if c in "\ufffe\uffff" else c for c in text)
+    return printable(text, also="\ufffe\uffff")
 
 
 def dhsim_fields(robot: Robot) -> dict:
