@@ -31,7 +31,7 @@ from textual.containers import Container, Vertical
 from textual.events import DescendantFocus, Resize
 from textual.reactive import reactive
 from textual.screen import Screen
-from textual.widgets import Footer, Static
+from textual.widgets import Static
 
 from dhsim_tui.core.analysis.jacobian import dexterity, jacobian_from_frames
 from dhsim_tui.core.model.errors import DhsimError
@@ -87,6 +87,7 @@ from dhsim_tui.tui.screens.control_program import ProgramPlayer
 from dhsim_tui.tui.screens.dialogs import short_path
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.widgets.cartesian_panel import CartesianPanel
+from dhsim_tui.tui.widgets.footer import KeysFooter
 from dhsim_tui.tui.widgets.joint_panel import JointPanel, JointRow
 from dhsim_tui.tui.widgets.pose_panel import ALL_READOUTS, READOUTS, PosePanel
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
@@ -168,7 +169,7 @@ class ControlScreen(Screen):
                 yield KeyHints(id="keys")
             yield ViewsPanel(self.renderer, id="views")
         yield Static("", id="too-small")
-        yield Footer(compact=True)
+        yield KeysFooter(compact=True)  # Textual's, minus its leak (widgets/footer.py)
 
     def on_mount(self) -> None:
         self._views = self.query_one(ViewsPanel)

@@ -26,7 +26,7 @@ from textual.coordinate import Coordinate
 from textual.events import Resize
 from textual.markup import escape
 from textual.screen import Screen
-from textual.widgets import DataTable, Footer, Static
+from textual.widgets import DataTable, Static
 
 from dhsim_tui.core.files.robotfile import FileStamp, read_stamp
 from dhsim_tui.core.model import editing
@@ -61,6 +61,7 @@ from dhsim_tui.tui.screens.editor_table import (
     joint_rows,
 )
 from dhsim_tui.tui.screens.help import HelpScreen
+from dhsim_tui.tui.widgets.footer import KeysFooter
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel, is_wide
 
 __all__ = ["EditorScreen", "is_bundled"]
@@ -135,7 +136,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
                 yield FittedTable(id="fields-table", cursor_type="row", zebra_stripes=True)
                 yield Static("", id="editor-status")
             yield ViewsPanel(self.renderer, id="preview")
-        yield Footer()
+        yield KeysFooter()
 
     def on_mount(self) -> None:
         self._preview = self.query_one(ViewsPanel)

@@ -109,7 +109,16 @@ class ViewsPanel(Container):
         self._views = list(self.query(ArmView))
         self._show_legend()
         self._mark_selected()
-        self.watch(self.app, "theme", self._restyle, init=False)
+        # the theme's signal, not ``self.watch(self.app, "theme", ...)``: in
+        # Textual 8.2.8 a watcher on the app outlives the panel and keeps it,
+        # and its whole screen, alive (docs/upstream/textual-footer-leak.md)
+        self.app.theme_changed_signal.subscribe(self, self._theme_changed)
+
+    def on_unmount(self) -> None:
+        self.app.theme_changed_signal.unsubscribe(self)
+
+    def _theme_changed(self, _theme: object) -> None:
+        self._restyle()
 
     # -- the legend ----------------------------------------------------------
     def _show_legend(self) -> None:
