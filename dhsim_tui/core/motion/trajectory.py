@@ -223,9 +223,8 @@ class _Sampler:
         degrees = math.degrees(float(np.linalg.norm(turn)))
         speed = linear_speed(step, robot.units)
         profile = linear_profile(robot, length, degrees, speed)
-        self._check_size(now + profile.duration)  # before the fine grid is built
         self.solves += math.ceil(profile.duration * self.rate * self.fine) + 1
-        self._check_size(now + profile.duration)
+        self._check_size(now + profile.duration)  # before the fine grid is built
         indices = self._walk_indices(now, profile.duration)
         times = np.append(indices / (self.rate * self.fine) - now, profile.duration)
         if profile.duration <= 0.0:
