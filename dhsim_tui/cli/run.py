@@ -160,13 +160,15 @@ def cmd_program(args: argparse.Namespace) -> int:
     else:
         print(format_run(trajectory, problems))
     if args.csv is not None:
-        from dhsim_tui.core.motion.trajectory_csv import csv_text
+        from dhsim_tui.core.motion.trajectory_csv import csv_pieces
 
-        text = csv_text(trajectory)
+        pieces = csv_pieces(trajectory)
         if args.csv == "-":
-            sys.stdout.write(text)
+            for piece in pieces:
+                sys.stdout.write(piece)
         else:
-            write_file(args.csv, text.encode("utf-8"), overwrite=args.force)
+            encoded = (piece.encode("utf-8") for piece in pieces)
+            write_file(args.csv, encoded, overwrite=args.force)
             wrote = printable(f"wrote {args.csv}")
             if args.json:  # stdout carries the JSON
                 to_stderr(wrote)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -82,7 +83,8 @@ def test_json_is_one_object_with_the_same_facts(capsys, problem_robot):
     assert [s["step"] for s in data["steps"]] == [1, 2]
     assert data["steps"][0]["q_end"] == [160, 0, 0, 0, 0, 0]
     assert data["duration"] == pytest.approx(data["steps"][1]["start"] + 0.1)
-    assert data["samples"] == 1 + round(data["duration"] * 100 + 0.5)
+    # every 10 ms of the move, the wait's first and last grid point, the end
+    assert data["samples"] == math.ceil(data["steps"][1]["start"] * 100) + 2 + 1
     (problem,) = data["problems"]
     assert problem["kind"] == "limit" and problem["subject"] == "Th1" and problem["step"] == 2
     assert set(problem) == {"kind", "step", "time", "until", "subject", "detail"}
@@ -108,7 +110,7 @@ def test_every_csv_row_is_dhsim_fk_at_its_joints(capsys, tmp_path):
 def test_csv_to_stdout_sends_the_report_to_stderr(capsys):
     code, out, err = run(capsys, "run", "puma560", "demo", "--csv", "-", "--rate", "10")
     assert code == 0
-    assert out.startswith("# dhsim trajectory") and len(rows_of(out)) == 80
+    assert out.startswith("# dhsim trajectory") and len(rows_of(out)) == 80 - 3  # the wait: 2 of 5
     assert err.startswith("Puma 560: program 'demo'")
 
 

@@ -39,9 +39,10 @@ def spans_of(trajectory, move):
 def test_samples_are_k_over_rate_and_end_at_the_program_end(puma):
     trajectory = played(puma, Step("joint", "qn"), Step("wait", seconds=0.333), rate=50.0)
     duration = trajectory.duration
-    assert np.array_equal(trajectory.time, np.arange(len(trajectory.time)) / 50.0)
-    assert len(trajectory.time) == math.ceil(duration * 50.0 - 1e-6) + 1
-    assert duration <= trajectory.time[-1] < duration + 1 / 50.0
+    k = np.round(trajectory.time * 50.0).astype(int)
+    assert np.array_equal(trajectory.time, k / 50.0)  # on the rate's grid
+    last = math.ceil(duration * 50.0 - 1e-6)
+    assert k[-1] == last and duration <= trajectory.time[-1] < duration + 1 / 50.0
     assert tuple(trajectory.q[-1]) == QN
     assert list(np.unique(trajectory.step)) == [1, 2]
     assert np.all(np.diff(trajectory.step) >= 0)
@@ -49,6 +50,22 @@ def test_samples_are_k_over_rate_and_end_at_the_program_end(puma):
     for time, number in zip(trajectory.time[:-1], trajectory.step[:-1], strict=True):
         span = trajectory.spans[number - 1]
         assert span.start <= time < span.end
+    # the move has every grid point; the wait only its first and last, then the end
+    move, wait = trajectory.spans
+    in_move = [i for i in range(last + 1) if i / 50.0 < move.end]
+    in_wait = [i for i in range(last) if move.end <= i / 50.0 < wait.end]
+    assert list(k) == [*in_move, in_wait[0], in_wait[-1], last]
+
+
+def test_a_wait_costs_no_samples_beyond_its_ends(puma):
+    trajectory = played(puma, Step("wait", seconds=3590.0), Step("joint", "qn"), rate=100.0)
+    wait, _ = trajectory.spans
+    in_wait = trajectory.time[trajectory.step == 1]
+    assert list(in_wait) == [0.0, math.ceil(wait.end * 100 - 1e-9) / 100 - 0.01]
+    in_move = np.round(trajectory.time[trajectory.step == 2] * 100).astype(int)
+    assert np.array_equal(in_move, np.arange(in_move[0], in_move[-1] + 1))
+    assert len(trajectory.time) == 2 + len(in_move)
+    assert np.all(trajectory.q[:2] == trajectory.q[0])  # the wait holds the start
 
 
 def test_every_pose_is_the_reference_fk_at_its_joints(puma):
@@ -61,8 +78,11 @@ def test_every_pose_is_the_reference_fk_at_its_joints(puma):
 def test_a_wait_holds_the_pose(puma):
     trajectory = played(puma, Step("joint", "qn"), Step("wait", seconds=0.5))
     held = trajectory.q[trajectory.step == 2]
-    assert len(held) >= 50
+    assert len(held) == 3  # its first and last grid point (it holds between), the end
     assert np.all(held == np.array(QN))
+    wait = trajectory.spans[1]
+    times = trajectory.time[trajectory.step == 2][:2]
+    assert times[0] - 0.01 < wait.start <= times[0] and times[1] < wait.end <= times[1] + 0.01
 
 
 def test_a_program_without_steps_is_its_start(puma):

@@ -21,7 +21,7 @@ import re
 import stat
 import tempfile
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 try:
@@ -238,11 +238,13 @@ def _remove_lock(lock: Path, info: os.stat_result) -> None:
 def write_atomic(
     target: Path,
     given: Path,
-    data: bytes,
+    data: bytes | Iterable[bytes],
     old: os.stat_result | None,
     check: Callable[[], None] | None = None,
 ) -> os.stat_result:
     """The atomic write itself; owner and mode of ``old`` (the replaced file) kept.
+    ``data``: the bytes, or their pieces in order (written as they come, so a
+    long export never sits whole in memory).
 
     ``check`` runs under :func:`locked`, after the temporary file is written
     and just before the rename; whatever it raises stops the save (the
@@ -261,7 +263,8 @@ def write_atomic(
             os.close(fd)
             raise
         with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
+            for piece in [data] if isinstance(data, bytes | bytearray) else data:
+                handle.write(piece)
             handle.flush()
             os.fsync(handle.fileno())
         with locked(target, given):
@@ -283,8 +286,11 @@ def write_atomic(
                 os.unlink(tmp_name)
 
 
-def write_file(path: str | os.PathLike[str], data: bytes, *, overwrite: bool = False) -> Path:
-    """Write ``data`` to ``path`` atomically (an export, a picture) and return ``path``.
+def write_file(
+    path: str | os.PathLike[str], data: bytes | Iterable[bytes], *, overwrite: bool = False
+) -> Path:
+    """Write ``data`` (bytes, or their pieces in order) to ``path`` atomically
+    (an export, a picture) and return ``path``.
 
     An existing file is replaced only with ``overwrite`` (keeping its owner
     and mode); a folder, a device or a pipe never is. A symbolic link is

@@ -28,6 +28,7 @@ Start and end poses outside the limits never get here: they are load errors
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -152,23 +153,25 @@ def _limits(trajectory: Trajectory) -> list[Problem]:
     return out
 
 
-def joint_speeds(trajectory: Trajectory) -> np.ndarray:
-    """Each sample's joint speeds (deg or robot units per second) from the
-    sample before, by finite differences ((N-1)×dof: sample 1 on)."""
-    return np.abs(np.diff(trajectory.q, axis=0)) / np.diff(trajectory.time)[:, None]
+def joint_speeds(trajectory: Trajectory, index: int) -> np.ndarray:
+    """Joint ``index``'s speed (deg or robot units per second) at each sample
+    from the sample before, by finite differences (N-1 values: sample 1 on).
+    One joint at a time, so a long run of a many-jointed arm never holds
+    every joint's differences at once."""
+    return np.abs(np.diff(trajectory.q[:, index])) / np.diff(trajectory.time)
 
 
 def _speeds(trajectory: Trajectory) -> list[Problem]:
     robot = trajectory.robot
     if len(trajectory.time) < 2:
         return []
-    speeds = joint_speeds(trajectory)
     out = []
     for index, joint in enumerate(robot.joints):
+        speeds = joint_speeds(trajectory, index)
         top = top_speed(joint, robot.units)
-        over = np.concatenate([[False], speeds[:, index] > top * (1.0 + SPEED_TOLERANCE)])
+        over = np.concatenate([[False], speeds > top * (1.0 + SPEED_TOLERANCE)])
         for run in runs(over, trajectory.step):
-            peak = float(speeds[run[0] - 1 : run[1], index].max())
+            peak = float(speeds[run[0] - 1 : run[1]].max())
             unit = _unit(robot, index)
             detail = (
                 f"{robot.labels[index]} at {_over(peak, top)} {unit}/s, over its top speed "
@@ -202,21 +205,27 @@ def _singular(trajectory: Trajectory) -> list[Problem]:
     return out
 
 
-def frame_heights(trajectory: Trajectory) -> tuple[np.ndarray, tuple[str, ...]]:
-    """The world z of frames 0 to n (and the tool point when the tool is not
-    frame n) at every sample, and their names (``frame 0`` ... ``tool``): each
-    frame by batch FK of the arm cut after its joint."""
+#: samples whose frames are computed at a time by :func:`frame_heights`
+HEIGHTS_AT_ONCE = 16384
+
+
+def frame_heights(trajectory: Trajectory) -> Iterator[tuple[str, np.ndarray]]:
+    """Each frame's name (``frame 0`` ... ``frame n``, then ``tool`` when the
+    tool is not frame n) and its world z at every sample, one frame at a
+    time: frame k by batch FK of the arm cut after joint k, a chunk of
+    samples at a time (never an (N, 4, 4) array per frame)."""
     robot, q = trajectory.robot, trajectory.q
     bare = replace(robot, tool=Tool(), poses=(), programs=())
-    columns = [np.full(len(q), robot.kinematics.base[2, 3])]
+    yield "frame 0", np.full(len(q), robot.kinematics.base[2, 3])
     for k in range(1, robot.dof + 1):
         arm = bare if k == robot.dof else replace(bare, joints=robot.joints[:k])
-        columns.append(arm.kinematics.batch(q[:, :k])[:, 2, 3])
-    names = [f"frame {k}" for k in range(robot.dof + 1)]
+        z = np.empty(len(q))
+        for first in range(0, len(q), HEIGHTS_AT_ONCE):
+            part = q[first : first + HEIGHTS_AT_ONCE, :k]
+            z[first : first + len(part)] = arm.kinematics.batch(part)[:, 2, 3]
+        yield f"frame {k}", z
     if not robot.tool.is_identity:
-        columns.append(trajectory.pose[:, 2, 3])
-        names.append("tool")
-    return np.column_stack(columns), tuple(names)
+        yield "tool", trajectory.pose[:, 2, 3]
 
 
 def floor_height(robot: Robot) -> float:
@@ -226,13 +235,12 @@ def floor_height(robot: Robot) -> float:
 
 def _floor(trajectory: Trajectory) -> list[Problem]:
     robot = trajectory.robot
-    heights, names = frame_heights(trajectory)
     floor = floor_height(robot)
-    below = heights < floor - FLOOR_TOLERANCE * length_scale(robot)
+    lowest = floor - FLOOR_TOLERANCE * length_scale(robot)
     out = []
-    for column, name in enumerate(names):
-        for run in runs(below[:, column], trajectory.step):
-            depth = float(floor - heights[run[0] : run[1] + 1, column].min())
+    for name, heights in frame_heights(trajectory):
+        for run in runs(heights < lowest, trajectory.step):
+            depth = float(floor - heights[run[0] : run[1] + 1].min())
             detail = f"{name} {length(robot, depth)} below the floor"
             out.append(_problem(trajectory, FLOOR, run, name, detail))
     return out

@@ -28,7 +28,12 @@ class Playback:
 
     @property
     def done(self) -> bool:
-        return self.time >= self.duration
+        return self.trajectory.complete and self.time >= self.duration
+
+    @property
+    def ready(self) -> float:
+        """How far it can play (s): the samples made so far."""
+        return self.trajectory.ready
 
     def at(self, time: float) -> tuple[float, ...]:
         """The joints at ``time`` (clamped to the trajectory), interpolated
@@ -36,7 +41,8 @@ class Playback:
         times = self.trajectory.time
         q = self.trajectory.q
         spans = self.trajectory.spans
-        ended = spans and not self.trajectory.failures  # (a failed move holds where it stopped)
+        # (a failed move holds where it stopped; a program still being sampled ends later)
+        ended = spans and self.trajectory.complete and not self.trajectory.failures
         if ended and time >= self.duration:  # the end, exactly (past the last sample)
             return tuple(float(v) for v in spans[-1].q_end)
         if len(times) == 0:

@@ -32,7 +32,7 @@ Checking the samples is :mod:`~dhsim_tui.core.motion.path_check`'s.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -114,7 +114,13 @@ class Failure:
 class Trajectory:
     """A program's samples: ``time`` (s), ``step`` (1-based; 0 for a program
     without steps), ``move`` ("joint", "linear" or "wait"), ``q`` (N×dof,
-    deg or robot units) and ``pose`` (N×4×4, the tool in the world)."""
+    deg or robot units) and ``pose`` (N×4×4, the tool in the world).
+
+    A wait holds the pose, so it has samples only at its ends (the grid's
+    first and last point in it): the times are on the rate's grid, but
+    not every grid point is a sample. ``complete`` is False for the part
+    of a program sampled so far (:class:`Sampling`): its samples end at
+    :attr:`ready`, its last step may go on past them."""
 
     robot: Robot
     program: Program
@@ -126,10 +132,18 @@ class Trajectory:
     q: np.ndarray
     pose: np.ndarray
     failures: tuple[Failure, ...] = field(default=())
+    complete: bool = True
 
     @property
     def duration(self) -> float:
         return self.spans[-1].end if self.spans else 0.0
+
+    @property
+    def ready(self) -> float:
+        """How far the samples go (s): the duration once complete."""
+        if self.complete:
+            return self.duration
+        return float(self.time[-1]) if len(self.time) else 0.0
 
     @property
     def xyz(self) -> np.ndarray:
@@ -138,7 +152,11 @@ class Trajectory:
     @cached_property
     def mu(self) -> np.ndarray:
         """The manipulability at every sample (the pose panel's measure)."""
-        return np.array([manipulability(self.robot, q) for q in self.q.tolist()])
+        out = np.empty(len(self.q))
+        for first in range(0, len(self.q), CHUNK):  # Python floats a chunk at a time
+            rows = self.q[first : first + CHUNK].tolist()
+            out[first : first + len(rows)] = [manipulability(self.robot, q) for q in rows]
+        return out
 
     @cached_property
     def tool_speed(self) -> np.ndarray:
@@ -151,6 +169,11 @@ class Trajectory:
         return speed
 
 
+#: samples (or a linear move's IK solves) made at a time: the unit of work of
+#: :meth:`Sampling.advance`, and of the arrays made at once
+CHUNK = 4096
+
+
 def sample(
     robot: Robot,
     program: Program,
@@ -160,17 +183,141 @@ def sample(
     """Play ``program`` on ``robot`` from ``start`` (home when None) at ``rate``
     samples a second. Raises :class:`DhsimError` for a bad rate or start, or a
     program too long to sample (more than :data:`MAX_SAMPLES`)."""
-    if not isinstance(rate, int | float) or not MIN_RATE <= rate <= MAX_RATE:
-        raise DhsimError(f"rate: give {MIN_RATE:g} to {MAX_RATE:g} samples a second, not {rate}")
-    q = tuple(float(v) for v in robot.check_q(robot.home if start is None else start))
-    check_timing(robot, program, float(rate), q)  # in closed form: refused before sampling
-    with np.errstate(all="ignore"):  # degenerate arms: guarded, never printed
-        return _Sampler(robot, program, float(rate)).run(q)
+    sampling = Sampling(robot, program, rate, start)
+    while sampling.advance():
+        pass
+    return sampling.trajectory()
+
+
+class Sampling:
+    """A program being sampled, a piece at a time: :meth:`advance` plans the
+    next step, or the next :data:`CHUNK` IK solves of a linear move, and
+    :meth:`trajectory` gives the samples so far (all of them once
+    :attr:`done`). A caller can play the first seconds while the rest is
+    made, show :attr:`progress`, and stop between two pieces.
+
+    The program's length is checked in closed form when it is made
+    (:func:`~dhsim_tui.core.model.program_timing.check_timing`), so a
+    program too long is refused before any sample exists."""
+
+    def __init__(
+        self,
+        robot: Robot,
+        program: Program,
+        rate: float = DEFAULT_RATE,
+        start: Sequence[float] | None = None,
+    ) -> None:
+        if not isinstance(rate, int | float) or not MIN_RATE <= rate <= MAX_RATE:
+            raise DhsimError(
+                f"rate: give {MIN_RATE:g} to {MAX_RATE:g} samples a second, not {rate}"
+            )
+        q = tuple(float(v) for v in robot.check_q(robot.home if start is None else start))
+        #: the program's duration (s) as planned, in closed form (a failed
+        #: linear move can make the real one differ)
+        self.planned = check_timing(robot, program, float(rate), q)
+        self.robot, self.program, self.rate = robot, program, float(rate)
+        self.start = q
+        self.done = False
+        self._sampler = _Sampler(robot, program, float(rate))
+        self._pieces = self._sampler.blocks(q)
+        self._blocks: list[_Block] = []
+        self._ready = 0.0
+
+    @property
+    def progress(self) -> float:
+        """The share of the program sampled so far, 0 to 1."""
+        if self.done:
+            return 1.0
+        return min(self._ready / self.planned, 1.0) if self.planned > 0 else 0.0
+
+    @property
+    def ready(self) -> float:
+        """How far the samples go so far (s)."""
+        return self._ready
+
+    def advance(self) -> bool:
+        """Make the next piece; False once every sample is made."""
+        if self.done:
+            return False
+        with np.errstate(all="ignore"):  # degenerate arms: guarded, never printed
+            block = next(self._pieces, None)
+        if block is None:
+            self.done = True
+            return False
+        if len(block.index):
+            self._blocks.append(block)
+            self._ready = float(block.index[-1]) / self.rate
+        return True
+
+    def trajectory(self) -> Trajectory:
+        """The samples made so far: every one, ending at the program's end,
+        once :attr:`done`."""
+        robot, spans = self.robot, tuple(self._sampler.spans)
+        blocks = list(self._blocks)
+        if self.done:
+            blocks = _with_end(blocks, spans, self.rate, self.start)
+        if blocks:
+            index = np.concatenate([b.index for b in blocks])
+            number = np.concatenate([np.broadcast_to(b.number, len(b.index)) for b in blocks])
+            q = np.concatenate([b.q for b in blocks])
+            if not self.done:  # kept as one block: the next call adds to it, no copy kept
+                self._blocks = [_Block(index, number, q)]
+        else:  # nothing sampled yet
+            index, number, q = (
+                np.zeros(0, np.int64),
+                np.zeros(0, np.int64),
+                np.zeros((0, robot.dof)),
+            )
+        moves = np.array(["wait", *(span.move for span in spans)])
+        with np.errstate(all="ignore"):
+            pose = robot.kinematics.batch(q) if len(q) else np.zeros((0, 4, 4))
+        return Trajectory(
+            robot,
+            self.program,
+            self.rate,
+            spans,
+            index / self.rate,
+            number,
+            moves[number],
+            q,
+            pose,
+            tuple(self._sampler.failures),
+            self.done,
+        )
+
+
+@dataclass(frozen=True)
+class _Block:
+    """Consecutive samples: their grid points ``k`` (times ``k / rate``), the
+    step's number (0: none; or one per sample, for the samples so far kept
+    as one block) and the joints (len×dof)."""
+
+    index: np.ndarray
+    number: int | np.ndarray
+    q: np.ndarray
+
+
+def _with_end(blocks: list[_Block], spans: tuple[Span, ...], rate: float, start) -> list[_Block]:
+    """The blocks with the program's last sample: at the first grid point not
+    before its end, with the last step's number and end joints."""
+    total = spans[-1].end if spans else 0.0
+    last = max(0, math.ceil(total * rate - 1e-6))
+    number = spans[-1].number if spans else 0
+    q_end = np.array([spans[-1].q_end if spans else start], dtype=float)
+    end = _Block(np.array([last], dtype=np.int64), number, q_end)
+    if not blocks or int(blocks[-1].index[-1]) < last:
+        return [*blocks, end]
+    final = blocks[-1]  # its last sample is the program's end: it takes the end's values
+    if len(final.index) == 1:
+        return [*blocks[:-1], end]
+    numbers = final.number if np.isscalar(final.number) else final.number[:-1]
+    head = _Block(final.index[:-1], numbers, final.q[:-1])
+    return [*blocks[:-1], head, end]
 
 
 class _Sampler:
-    """One run of :func:`sample`: the steps planned in order, each from where
-    the one before really ended, then the samples read off them."""
+    """One run of :class:`Sampling`: the steps planned in order, each from
+    where the one before really ended, their samples made as they are."""
 
     def __init__(self, robot: Robot, program: Program, rate: float) -> None:
         self.robot = robot
@@ -179,6 +326,7 @@ class _Sampler:
         self.fine = max(1, math.ceil(IK_RATE / rate - 1e-9))  # IK solves per sample interval
         self.solves = 0
         self.failures: list[Failure] = []
+        self.spans: list[Span] = []
         rows = controllable_rows(robot)
         self.position_only = robot.dof < int(rows.sum())
         scale = length_scale(robot)
@@ -186,25 +334,36 @@ class _Sampler:
             [MAX_JOINT_JUMP_DEG if j.is_revolute else JUMP_SHARE * scale for j in robot.joints]
         )
 
-    def run(self, q: tuple[float, ...]) -> Trajectory:
-        start = q
-        spans: list[Span] = []
-        pieces: list = []  # per step: None (wait), a Trapezoid (joint), a walk (linear)
+    def blocks(self, q: tuple[float, ...]) -> Iterator[_Block]:
+        """Every step's samples, a block at a time (an empty block after a
+        step without samples, so each piece of work is one)."""
         now = 0.0
         for number, step in enumerate(self.program.steps, start=1):
             if step.is_wait:
-                span, piece = Span(number, step, now, float(step.seconds), q, q), None
+                span = Span(number, step, now, float(step.seconds), q, q)
+                yield from self._wait(span)
             elif step.move == "joint":
                 goal = target_joints(self.robot, self.program.name, number, step)
                 piece = joint_profile(self.robot, q, goal, step.speed)
                 span = Span(number, step, now, piece.duration, q, tuple(goal))
+                yield from self._joint(span, piece)
             else:
-                span, piece = self._linear(number, step, now, q)
-            self._check_size(span.end)
-            spans.append(span)
-            pieces.append(piece)
+                span = yield from self._linear(number, step, now, q)
             now, q = span.end, span.q_end
-        return self._samples(start, spans, pieces)
+
+    def _grid(self, span: Span) -> np.ndarray:
+        """The grid points ``k`` whose times ``k / rate`` lie in the span
+        (``start <= t < end``), exactly as those times compare."""
+        return np.arange(self._first_at(span.start), self._first_at(span.end), dtype=np.int64)
+
+    def _first_at(self, time: float) -> int:
+        """The first grid point not before ``time``."""
+        k = max(0, math.ceil(time * self.rate))
+        while k > 0 and (k - 1) / self.rate >= time:
+            k -= 1
+        while k / self.rate < time:
+            k += 1
+        return k
 
     def _check_size(self, duration: float) -> None:
         if duration * self.rate > MAX_SAMPLES or self.solves > MAX_SAMPLES:
@@ -213,8 +372,28 @@ class _Sampler:
                 f"more than {MAX_SAMPLES} samples; lower the rate or shorten the program"
             )
 
+    def _wait(self, span: Span) -> Iterator[_Block]:
+        """A wait's samples: the first and last grid point in it (it holds)."""
+        self._check_size(span.end)
+        self.spans.append(span)
+        grid = self._grid(span)
+        ends = np.unique(grid[[0, -1]]) if len(grid) else grid
+        yield _Block(ends, span.number, np.tile(np.array(span.q_start), (len(ends), 1)))
+
+    def _joint(self, span: Span, profile: Trapezoid) -> Iterator[_Block]:
+        self._check_size(span.end)
+        self.spans.append(span)
+        grid = self._grid(span)
+        first, last = np.array(span.q_start), np.array(span.q_end)
+        for at in range(0, max(len(grid), 1), CHUNK):
+            part = grid[at : at + CHUNK]
+            local = part / self.rate - span.start
+            yield _Block(part, span.number, blend(first, last, profile.position(local)))
+
     # -- linear moves: IK along the line -------------------------------------------------
     def _linear(self, number: int, step: Step, now: float, q: tuple[float, ...]):
+        """A linear move's samples, :data:`CHUNK` IK solves at a time; returns
+        its span (its end joints are where the walk ended)."""
         robot = self.robot
         goal = target_joints(robot, self.program.name, number, step)
         first, last = robot.kinematics.pose(q), robot.kinematics.pose(goal)
@@ -225,14 +404,58 @@ class _Sampler:
         profile = linear_profile(robot, length, degrees, speed)
         self.solves += math.ceil(profile.duration * self.rate * self.fine) + 1
         self._check_size(now + profile.duration)  # before the fine grid is built
-        indices = self._walk_indices(now, profile.duration)
-        times = np.append(indices / (self.rate * self.fine) - now, profile.duration)
-        if profile.duration <= 0.0:
+        duration = profile.duration
+        indices = self._walk_indices(now, duration)  # fine points strictly inside
+        times = np.append(indices / (self.rate * self.fine) - now, duration)
+        if duration <= 0.0:
             times = times[:0]
-        targets = line_poses(first, last, turn, profile.position(times))
-        walked = self._follow(number, now, q, times, targets)
-        end = tuple(walked[-1].tolist()) if len(walked) else q
-        return Span(number, step, now, profile.duration, q, end), (indices, walked)
+        planned = Span(number, step, now, duration, q, tuple(goal))
+        self.spans.append(planned)  # until the walk is over: where it is meant to end
+        grid = self._grid(planned)
+        fine_points = grid * self.fine
+        walk = _Walk(self, number, now, q, times)
+        sent = 0  # samples of the grid given so far
+        while True:
+            done = walk.solve(
+                lambda part: line_poses(first, last, turn, profile.position(part)), CHUNK
+            )
+            # the samples whose fine points are solved (or held after a failure)
+            solved = (
+                len(fine_points)
+                if done
+                else int(
+                    np.searchsorted(fine_points, indices[walk.count - 1], side="right")
+                    if walk.count
+                    else 0
+                )
+            )
+            if solved > sent or done:
+                part = grid[sent:solved]
+                held = walk.out[walk.count - 1] if walk.count else np.array(q)
+                if done:
+                    span = Span(number, step, now, duration, q, tuple(held.tolist()))
+                    self.spans[-1] = span
+                joints = self._linear_joints(planned, part, indices, walk.out, held)
+                yield _Block(part, number, joints)
+                sent = solved
+            if done:
+                return span
+
+    def _linear_joints(
+        self, span: Span, part: np.ndarray, indices, walked, held: np.ndarray
+    ) -> np.ndarray:
+        """The joints at grid points ``part``: the start's at the move's start,
+        else the walk's at the same fine point (``held``, where the walk is,
+        for one the fine grid's rounding misses)."""
+        local = part / self.rate - span.start
+        out = np.where((local <= 0.0)[:, None], np.array(span.q_start), held)
+        if not len(part) or not len(indices):
+            return out
+        fine_points = part * self.fine
+        where = np.minimum(np.searchsorted(indices, fine_points), len(indices) - 1)
+        found = indices[where] == fine_points
+        out[found] = walked[where[found]]
+        return out
 
     def _walk_indices(self, start: float, duration: float) -> np.ndarray:
         """The fine grid's points ``j / (rate · fine)`` strictly inside the move
@@ -244,86 +467,59 @@ class _Sampler:
         local = indices / fine_rate - start
         return indices[(local > 0.0) & (local < duration)]
 
-    def _follow(self, number: int, start: float, q, times: np.ndarray, targets: np.ndarray):
-        """Joints along ``targets`` by IK, each from the one before; held from
-        the first that fails or jumps (recorded)."""
-        robot = self.robot
-        out = np.empty((len(times), robot.dof))
-        previous = tuple(q)
-        jump = self.jump.tolist()
-        for i, target in enumerate(targets):
+
+class _Walk:
+    """A linear move's IK walk along its poses, each solve from the one
+    before; held from the first that fails or jumps (recorded)."""
+
+    def __init__(self, sampler: _Sampler, number: int, start: float, q, times: np.ndarray):
+        self.sampler = sampler
+        self.number = number
+        self.start = start
+        self.times = times
+        self.out = np.empty((len(times), sampler.robot.dof))
+        self.previous = tuple(q)
+        self.count = 0  # solves made (the rest held after a failure)
+        self.jump = sampler.jump.tolist()
+
+    def solve(self, targets, most: int) -> bool:
+        """The next ``most`` solves (poses from ``targets(times)``); True when
+        the walk is over."""
+        sampler, robot = self.sampler, self.sampler.robot
+        part = self.times[self.count : self.count + most]
+        for offset, target in enumerate(targets(part)):
+            i = self.count + offset
             result = inverse(
                 robot,
                 target,
-                previous,
+                self.previous,
                 max_iter=IK_ITERATIONS,
-                position_only=self.position_only,
-                max_change=jump,
+                position_only=sampler.position_only,
+                max_change=self.jump,
             )
             failure = None
             if not result.success:
-                failure = Failure(number, start + float(times[i]), REACH, result.reason)
+                failure = Failure(
+                    self.number, self.start + float(part[offset]), REACH, result.reason
+                )
             else:
-                over = np.abs(np.subtract(result.q, previous)) - self.jump
+                over = np.abs(np.subtract(result.q, self.previous)) - sampler.jump
                 if over.max() > 0.0:
                     joint = int(np.argmax(over))
-                    change = abs(result.q[joint] - previous[joint])
+                    change = abs(result.q[joint] - self.previous[joint])
                     failure = Failure(
-                        number, start + float(times[i]), JUMP, amount(change, 2), joint
+                        self.number,
+                        self.start + float(part[offset]),
+                        JUMP,
+                        amount(change, 2),
+                        joint,
                     )
             if failure is not None:
-                self.failures.append(failure)
-                out[i:] = previous
-                return out
-            previous = result.q
-            out[i] = previous
-        return out
-
-    # -- the samples -------------------------------------------------------------------
-    def _samples(self, start: tuple[float, ...], spans: list[Span], pieces: list) -> Trajectory:
-        robot, rate = self.robot, self.rate
-        total = spans[-1].end if spans else 0.0
-        count = max(0, math.ceil(total * rate - 1e-6)) + 1
-        time = np.arange(count) / rate
-        q = np.empty((count, robot.dof))
-        if not spans:
-            q[:] = start
-            step = np.zeros(count, dtype=np.int64)
-            move = np.full(count, "wait")
-        else:
-            ends = np.array([span.end for span in spans])
-            which = np.minimum(np.searchsorted(ends, time, side="right"), len(spans) - 1)
-            which[-1] = len(spans) - 1  # the last sample is the program's end
-            for index, (span, piece) in enumerate(zip(spans, pieces, strict=True)):
-                picked = np.flatnonzero(which == index)
-                if len(picked):
-                    q[picked] = self._span_joints(span, piece, picked, time[picked] - span.start)
-            q[-1] = spans[-1].q_end
-            step = which + 1
-            move = np.array([span.move for span in spans])[which]
-        return Trajectory(
-            robot,
-            self.program,
-            rate,
-            tuple(spans),
-            time,
-            step,
-            move,
-            q,
-            robot.kinematics.batch(q),
-            tuple(self.failures),
-        )
-
-    def _span_joints(self, span: Span, piece, picked: np.ndarray, local: np.ndarray):
-        if piece is None:  # a wait
-            return np.broadcast_to(np.array(span.q_start), (len(picked), self.robot.dof))
-        if isinstance(piece, Trapezoid):  # a joint move
-            return blend(np.array(span.q_start), np.array(span.q_end), piece.position(local))
-        indices, walked = piece  # a linear move: the IK walk at the samples' fine points
-        fine_points = picked * self.fine
-        where = np.minimum(np.searchsorted(indices, fine_points), max(len(indices) - 1, 0))
-        found = indices[where] == fine_points if len(indices) else np.zeros(len(picked), dtype=bool)
-        out = np.where((local <= 0.0)[:, None], np.array(span.q_start), np.array(span.q_end))
-        if found.any():
-            out[found] = walked[where[found]]
-        return out
+                sampler.failures.append(failure)
+                self.out[i:] = self.previous
+                self.count = len(self.times)
+                return True
+            self.previous = result.q
+            self.out[i] = self.previous
+        self.count += len(part)
+        return self.count >= len(self.times)

@@ -30,6 +30,7 @@ import csv
 import io
 import math
 import re
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -79,26 +80,40 @@ def _number(value: float) -> str:
     return "0" if text in ("-0", "0") else text
 
 
-def csv_text(trajectory: Trajectory) -> str:
-    """The trajectory as CSV text (see the module's description)."""
+#: rows formatted at a time by :func:`csv_pieces`
+ROWS_PER_PIECE = 4096
+
+
+def csv_pieces(trajectory: Trajectory) -> Iterator[str]:
+    """The trajectory as CSV text (see the module's description), in pieces
+    of :data:`ROWS_PER_PIECE` rows, so a long run is written as it is
+    formatted instead of held whole."""
     out = io.StringIO()
     out.write(units_line(trajectory) + "\n")
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(columns(trajectory.robot))
-    mu = trajectory.mu.tolist()
-    times = np.round(trajectory.time, 9).tolist()
-    for i, (q, pose) in enumerate(zip(trajectory.q.tolist(), trajectory.pose, strict=True)):
-        end = read_out(pose)
-        numbers = [*q, *end.xyz, *end.oat, mu[i]]
-        writer.writerow(
-            [
-                _number(times[i]),
-                int(trajectory.step[i]),
-                str(trajectory.move[i]),
-                *(_number(v) for v in numbers),
-            ]
-        )
-    return out.getvalue()
+    mu = trajectory.mu
+    for first in range(0, len(trajectory.time), ROWS_PER_PIECE):
+        last = first + ROWS_PER_PIECE
+        times = np.round(trajectory.time[first:last], 9).tolist()
+        steps = trajectory.step[first:last].tolist()
+        moves = trajectory.move[first:last].tolist()
+        mus = mu[first:last].tolist()
+        poses = trajectory.pose[first:last]
+        for i, q in enumerate(trajectory.q[first:last].tolist()):
+            end = read_out(poses[i])
+            numbers = [*q, *end.xyz, *end.oat, mus[i]]
+            writer.writerow([_number(times[i]), steps[i], moves[i], *(_number(v) for v in numbers)])
+        yield out.getvalue()
+        out.seek(0)
+        out.truncate()
+    if out.tell():  # no samples: the two header lines alone
+        yield out.getvalue()
+
+
+def csv_text(trajectory: Trajectory) -> str:
+    """The trajectory as CSV text, whole (see :func:`csv_pieces`)."""
+    return "".join(csv_pieces(trajectory))
 
 
 # -- reading a trajectory back as a program -------------------------------------------

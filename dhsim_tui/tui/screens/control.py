@@ -568,7 +568,9 @@ class ControlScreen(Screen):
             self.say("stopped")
 
     def action_stop(self) -> None:
-        """escape: stop a smooth move (nothing else)."""
+        """escape: stop sampling a program, or a smooth move (nothing else)."""
+        if self._ready and self._programs.cancel_sampling():
+            return
         self._interrupt()
 
     def action_toggle_motion(self, _shown_as_on: int = 0) -> None:

@@ -69,8 +69,8 @@ CONTROL_BINDINGS = [
             tooltip="Smooth moves to home and poses are on: m turns them off", group=MOTION),
     Binding("m", "toggle_motion(0)", "Motion off", id="motion.off",
             tooltip="Smooth moves to home and poses are off: m turns them on", group=MOTION),
-    Binding("escape", "stop", "Stop", show=False, id="motion.stop", tooltip="Stop a smooth move",
-            group=STOP),
+    Binding("escape", "stop", "Stop", show=False, id="motion.stop",
+            tooltip="Stop a smooth move, or the sampling of a program", group=STOP),
     *forwarded(VIEW_BINDINGS, "views"),
     # not in the footer (no room at 80 columns): help, the palette and the legend name them
     Binding("b", "next_branch", "Branch", show=False, id="ik.next_branch",

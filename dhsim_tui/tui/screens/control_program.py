@@ -12,12 +12,14 @@ and where the arm is at a time (:mod:`~dhsim_tui.core.motion.playback`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 from time import monotonic
 from typing import Protocol
 
 import numpy as np
 from textual.timer import Timer
+from textual.worker import Worker, get_current_worker
 
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.program import (
@@ -32,9 +34,10 @@ from dhsim_tui.core.model.program import (
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.motion.path_check import check_path
 from dhsim_tui.core.motion.playback import Playback
-from dhsim_tui.core.motion.trajectory import sample
+from dhsim_tui.core.motion.trajectory import Sampling, Trajectory
 from dhsim_tui.tui.flows.values import shorten_path_in
 from dhsim_tui.tui.screens.program_plot import ProgramPlot
+from dhsim_tui.tui.widgets.joint_row import ascii_mode
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 
 #: how many samples a second a program is played from
@@ -46,6 +49,12 @@ SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0)
 #: the most points the tool's path is drawn with
 TRAIL_POINTS = 400
 NO_PROGRAM = "no program to play: R records the current pose as a step"
+#: a program starts playing once this much of it is sampled (s of program time)
+PLAY_AHEAD = 2.0
+#: how often the sampling's progress is shown (s)
+PROGRESS_EVERY = 0.1
+#: the progress bar's width (cells)
+BAR_WIDTH = 6
 
 
 class Host(Protocol):
@@ -57,6 +66,7 @@ class Host(Protocol):
 
     def say(self, message: str, error: bool = False) -> None: ...
     def set_interval(self, interval: float, callback) -> Timer: ...
+    def run_worker(self, work, **kwargs) -> Worker: ...
     def refresh_bindings(self) -> None: ...
     def stop_moving(self) -> None: ...
     def refresh_views(self) -> None: ...
@@ -76,11 +86,21 @@ class ProgramPlayer:
         self._from = (0.0, 0.0)  # (monotonic time, time played) when play last began
         self.speed = 1.0  # times real time
         self.record_move = "joint"  # what R records: "joint" or "linear" (L)
+        self._sampler: Worker | None = None  # the program being sampled, in a thread
+        self._progress = 0.0  # its share sampled so far
+        self._planned = 0.0  # its duration, in closed form
+        self._then: Callable[[], None] | None = None  # what to do once it is all sampled
+        self._play_when_ready = False  # space came while it was being sampled
         panel.show(self.program())
 
     @property
     def playing(self) -> bool:
         return self._timer is not None
+
+    @property
+    def sampling(self) -> bool:
+        """The program is being sampled (in a thread)."""
+        return self._sampler is not None
 
     @property
     def trail(self) -> np.ndarray | None:
@@ -156,6 +176,7 @@ class ProgramPlayer:
     def _keep(self, robot: Robot, message: str) -> None:
         """Its file saved (or kept until quit for a bundled robot), as P does."""
         self.pause()
+        self._stop_sampling()
         had_path = self.playback is not None
         self.playback = None
         self.host.robot = robot
@@ -175,15 +196,26 @@ class ProgramPlayer:
 
     # -- playing -----------------------------------------------------------------------
     def toggle(self) -> None:
-        """space: play from the start (or on from a pause); again: pause."""
+        """space: play from the start (or on from a pause); again: pause.
+        A program is played as soon as its first seconds are sampled."""
         if self.playing:
             self.pause()
             self.host.say(f"paused at {self.playback.time:.2f} s (space goes on)")
             return
+        if self.sampling and self.playback is None:
+            self._play_when_ready = not self._play_when_ready
+            self._show()
+            return
         if self.playback is not None and self.playback.done:
             self.playback = None
-        if not self._ready():
+        if self.playback is None:
+            self._play_when_ready = True
+            self._sample()
             return
+        self._play()
+
+    def _play(self) -> None:
+        self._play_when_ready = False
         self.host.stop_moving()
         problems = self.playback.problems
         found = (
@@ -191,9 +223,11 @@ class ProgramPlayer:
             if problems
             else "; the path check found no problem"
         )
-        self.host.say(
-            f"playing {self.name}: {self.playback.duration:.2f} s{found}", error=bool(problems)
-        )
+        duration = self.playback.duration
+        if not self.playback.trajectory.complete:
+            found = f"; sampling the rest ({self._percent()} done)"
+            duration = self._planned
+        self.host.say(f"playing {self.name}: {duration:.2f} s{found}", error=bool(problems))
         self._start()
 
     def pause(self) -> bool:
@@ -204,22 +238,150 @@ class ProgramPlayer:
         self._timer = None
         return True
 
-    def _ready(self) -> bool:
-        """A playback (the program sampled from where the arm is, and checked)."""
-        if self.playback is not None:
+    def _ready(self, then: Callable[[], None], what: str) -> bool:
+        """The whole program sampled (from where the arm is) and checked: True;
+        else it is sampled (in a thread), ``then`` runs when it is, and the
+        status line says ``what`` will happen then."""
+        if self.playback is not None and self.playback.trajectory.complete:
             return True
+        self._then = then
+        self._sample()
+        if self.sampling:
+            self.host.say(f"sampling {self.name} ({self._percent()} done): {what} then")
+        return False
+
+    # -- sampling, in a thread ---------------------------------------------------------
+    def _sample(self) -> None:
+        """Start sampling the program, unless it is under way."""
+        if self.sampling:
+            self._show()
+            return
         program = self.program()
         if program is None or not program.steps:
+            self._then = None
+            self._play_when_ready = False
             self.host.say(NO_PROGRAM, error=True)
-            return False
-        try:
-            trajectory = sample(self.host.robot, program, PLAY_RATE, start=self.host.q)
+            return
+        try:  # the program's length, in closed form: refused before any sample
+            sampling = Sampling(self.host.robot, program, PLAY_RATE, start=self.host.q)
         except DhsimError as exc:
+            self._then = None
+            self._play_when_ready = False
             self.host.say(str(exc), error=True)
+            return
+        self._progress = 0.0
+        self._planned = sampling.planned
+        self._sampler = self.host.run_worker(
+            lambda: self._sample_in_thread(sampling),
+            thread=True,
+            group="sampling",
+            exit_on_error=False,
+        )
+        self._show()
+
+    def _sample_in_thread(self, sampling: Sampling) -> None:
+        """The worker: piece after piece; the progress shown now and then, the
+        samples handed over when the first seconds are there, then each time
+        they double (so the work of handing over stays a share of the whole),
+        and at the end."""
+        worker = get_current_worker()
+        call = self.host.app.call_from_thread  # type: ignore[attr-defined]
+        shown = monotonic()
+        handed = 0.0
+        try:
+            while sampling.advance():
+                if worker.is_cancelled:
+                    return
+                if monotonic() - shown >= PROGRESS_EVERY:
+                    shown = monotonic()
+                    call(self._sampled, worker, sampling.progress, None)
+                ahead = min(PLAY_AHEAD, sampling.planned)
+                if sampling.ready >= max(ahead, 2 * handed) and sampling.ready > handed:
+                    handed = sampling.ready
+                    trajectory = sampling.trajectory()
+                    call(self._sampled, worker, sampling.progress, self._checked(trajectory))
+            if not worker.is_cancelled:
+                trajectory = sampling.trajectory()
+                call(self._sampled, worker, 1.0, self._checked(trajectory))
+        except DhsimError as exc:
+            if not worker.is_cancelled:
+                call(self._failed, worker, str(exc))
+
+    @staticmethod
+    def _checked(trajectory: Trajectory) -> Playback:
+        return Playback(trajectory, check_path(trajectory))
+
+    def _sampled(self, worker: Worker, progress: float, playback: Playback | None) -> None:
+        """From the worker: how far it is, and (now and then) the samples so far."""
+        if worker is not self._sampler:
+            return  # cancelled, or another program's
+        self._progress = progress
+        if playback is not None:
+            first = self.playback is None
+            if not first:
+                playback.time = self.playback.time
+            self.playback = playback
+            if playback.trajectory.complete:
+                self._sampler = None
+            if first:
+                self.host.refresh_views()  # the path, in every view
+            if first and self._play_when_ready:
+                self._play()
+            elif playback.trajectory.complete and self.playing:
+                problems = playback.problems
+                if problems:
+                    self.host.say(
+                        f"playing {self.name}: {len(problems)} problems (n: the next)",
+                        error=True,
+                    )
+            if playback.trajectory.complete:
+                self.host.refresh_views()
+                then, self._then = self._then, None
+                if then is not None:
+                    then()
+        self._show()
+
+    def _failed(self, worker: Worker, message: str) -> None:
+        if worker is not self._sampler:
+            return
+        self._sampler = None
+        self._then = None
+        self._play_when_ready = False
+        self.pause()
+        self.playback = None
+        self.host.say(message, error=True)
+        self._show()
+
+    def cancel_sampling(self) -> bool:
+        """escape: stop sampling (and playing what was sampled); True if it was
+        under way."""
+        if not self.sampling:
             return False
-        self.playback = Playback(trajectory, check_path(trajectory))
-        self.host.refresh_views()  # the path, in every view
+        self.pause()
+        self._stop_sampling()
+        had_path = self.playback is not None
+        self.playback = None
+        self.host.say(f"stopped sampling {self.name} at {self._percent()}")
+        self._show()
+        if had_path:
+            self.host.refresh_views()
         return True
+
+    def _stop_sampling(self) -> None:
+        if self._sampler is not None:
+            self._sampler.cancel()
+        self._sampler = None
+        self._then = None
+        self._play_when_ready = False
+
+    def _percent(self) -> str:
+        return f"{int(self._progress * 100)} %"
+
+    def _bar(self) -> str:
+        """The sampling's progress: a bar, the share and how to stop it."""
+        full, empty = ("#", "-") if ascii_mode(self.panel) else ("█", "░")
+        filled = min(BAR_WIDTH, int(self._progress * BAR_WIDTH))
+        return f"{full * filled}{empty * (BAR_WIDTH - filled)} {self._percent()} esc stops"
 
     def _start(self) -> None:
         self._from = (monotonic(), self.playback.time)
@@ -231,7 +393,9 @@ class ProgramPlayer:
         if playback is None:
             return
         began, at = self._from
-        playback.time = min(at + (monotonic() - began) * self.speed, playback.duration)
+        # a program still being sampled plays up to its last sample, and waits there
+        end = playback.duration if playback.trajectory.complete else playback.ready
+        playback.time = min(at + (monotonic() - began) * self.speed, end)
         self.host.q = playback.at(playback.time)
         self._show()
         if playback.done:
@@ -242,9 +406,13 @@ class ProgramPlayer:
         playback = self.playback
         if playback is None:
             self.panel.show(self.program())
+            self.panel.border_subtitle = f"sampling {self._bar()}" if self.sampling else ""
             return
         step = playback.step_at(playback.time)
         self.panel.show(self.program(), step, playback.problems_per_step())
+        if self.sampling:
+            self.panel.border_subtitle = f"{playback.time:.2f} s  {self._bar()}"
+            return
         speed = f"  ×{self.speed:g}" if self.speed != 1 else ""
         self.panel.border_subtitle = f"{playback.time:.2f} / {playback.duration:.2f} s{speed}"
 
@@ -259,7 +427,7 @@ class ProgramPlayer:
 
     def plot(self) -> None:
         """t: the joints and the tool speed against time, at the time played."""
-        if self._ready():
+        if self._ready(self.plot, "the plot opens"):
             title = f"{self.name}: joints and tool speed against time"
             playback = self.playback
             self.host.app.push_screen(  # type: ignore[attr-defined]
@@ -268,12 +436,12 @@ class ProgramPlayer:
 
     def seek(self, steps: int) -> None:
         """To the start of the step ``steps`` before or after."""
-        if self._ready():
+        if self._ready(lambda: self.seek(steps), "the step is sought"):
             self.playback.seek_step(steps)
             self._jump()
 
     def next_problem(self) -> None:
-        if not self._ready():
+        if not self._ready(self.next_problem, "the first problem is shown"):
             return
         problem = self.playback.next_problem()
         if problem is None:
