@@ -53,9 +53,9 @@ VIEW_MODES: dict[str, dict] = {
 
 SHOTS: list[tuple[str, str, tuple[int, int], tuple[str, ...]]] = [
     *[(name, "puma560", (120, 36), MOVE) for name in VIEW_MODES],
-    ("views-fit-120x36", "puma560", (120, 36), (*MOVE, "F")),
+    ("views-work-area-120x36", "puma560", (120, 36), (*MOVE, "F")),  # F: out of the fit
     ("views-3d-maximised-120x36", "puma560", (120, 36), (*MOVE, "4", "z")),
-    ("views-3d-orbited-fit-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w", "F")),
+    ("views-3d-orbited-fit-120x36", "puma560", (120, 36), (*MOVE, "4", "z", "d", "w")),
     ("views-frames-ends-120x36", "puma560", (120, 36), (*MOVE, "x")),
     ("views-zoomed-120x36", "puma560", (120, 36), (*MOVE, "plus", "plus")),
     ("control-200x60", "puma560", (200, 60), MOVE),

@@ -190,3 +190,11 @@ def _own_working_folder(tmp_path_factory, monkeypatch):
     writes the repository's ``robots/`` or litters the checkout (a test that
     wants ``tmp_path`` there too uses ``in_tmp``)."""
     monkeypatch.chdir(tmp_path_factory.mktemp("cwd"))
+
+
+@pytest.fixture(autouse=True)
+def _own_robot_library(tmp_path_factory, monkeypatch):
+    """Every test has its own, empty user robot library
+    (``$XDG_DATA_HOME/dhsim/robots``): a robot one test saves there is not
+    listed, opened or replaced by another."""
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path_factory.mktemp("data")))

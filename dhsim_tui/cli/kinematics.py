@@ -3,6 +3,11 @@
 A thin shell over :mod:`dhsim_tui.core.model.kinematics`, :mod:`dhsim_tui.core.ik.numerical`
 and :mod:`dhsim_tui.core.ik.solutions` (``ik --all``). Neither imports textual:
 both start fast in scripts.
+
+``dhsim ik`` without a solution is an answer, not a usage error: exit
+status :data:`EXIT_NO_SOLUTION` (3, as ``dhsim run`` when its check finds
+problems) and one line on stderr saying why, or with ``--json`` one object
+on stdout (``"solved": false`` and the ``"reason"``). 2 stays for bad input.
 """
 
 from __future__ import annotations
@@ -14,6 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from dhsim_tui.cli.streams import to_stderr
 from dhsim_tui.core.files.library import load_robot
 from dhsim_tui.core.ik.nearest import inverse
 from dhsim_tui.core.ik.reasons import angle, length
@@ -28,6 +34,20 @@ from dhsim_tui.core.model.validation import check_joint_values, fmt
 VALUE_OPTIONS = ("--q", "--xyz", "--oat", "--from", "--orbit")
 #: random restarts of `dhsim ik` after the first start fails (seeded: repeatable)
 IK_RESTARTS = 30
+#: the exit status of `dhsim ik` when no joint values reach the pose (as `dhsim run`
+#: exits when its path check finds problems); 2 stays for bad input
+EXIT_NO_SOLUTION = 3
+
+
+def no_solution(robot: Robot, reason: str, as_json: bool, **fields) -> int:
+    """Say why there is no solution (a line on stderr, or with ``--json`` an
+    object on stdout); the exit status :data:`EXIT_NO_SOLUTION`."""
+    if as_json:
+        answer = {"robot": robot.name, "units": robot.units, "solved": False, "reason": reason}
+        print(json.dumps({**answer, **fields}))
+    else:
+        to_stderr(printable(f"dhsim: no solution for {shortened(robot.name)}: {reason}"))
+    return EXIT_NO_SOLUTION
 
 
 def parse_values(text: str, option: str) -> list[float]:
@@ -130,9 +150,9 @@ def cmd_ik(args: argparse.Namespace) -> int:
         return _ik_all(robot, target, start, position_only=args.oat is None, as_json=args.json)
     result = inverse(robot, target, start, position_only=args.oat is None, restarts=IK_RESTARTS)
     if not result.success:
-        raise DhsimError(f"no solution for {shortened(robot.name)}: {result.reason}")
+        return no_solution(robot, result.reason, args.json)
     if not all(math.isfinite(v) for v in (*result.q, result.residual)):
-        raise DhsimError(f"no solution for {shortened(robot.name)}: the solver lost precision")
+        return no_solution(robot, "the solver lost precision", args.json)
     pose = robot.kinematics.end_effector(result.q)
     if args.json:
         print(
@@ -140,6 +160,7 @@ def cmd_ik(args: argparse.Namespace) -> int:
                 {
                     "robot": robot.name,
                     "units": robot.units,
+                    "solved": True,
                     "q": list(result.q),
                     "xyz": list(pose.xyz),
                     "oat": list(pose.oat),
@@ -163,7 +184,8 @@ def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) 
     """``dhsim ik --all``: every solution, nearest to the start first."""
     found = all_solutions(robot, target, start, position_only=position_only)
     if not found.solutions:
-        raise DhsimError(f"no solution for {shortened(robot.name)}: {found.note}")
+        extra = {"method": found.method, "family": found.family, "solutions": []}
+        return no_solution(robot, found.note, as_json, **extra)
     if as_json:
         solutions = [
             {"q": list(s.q), "config": s.config, "residual": s.residual} for s in found.solutions
@@ -173,6 +195,7 @@ def _ik_all(robot: Robot, target, start, *, position_only: bool, as_json: bool) 
                 {
                     "robot": robot.name,
                     "units": robot.units,
+                    "solved": True,
                     "method": found.method,
                     "family": found.family,
                     "solutions": solutions,
@@ -210,7 +233,9 @@ def subparsers(parser_class: type[argparse.ArgumentParser]) -> dict[str, argpars
     fk.add_argument("--json", action="store_true", help="print one JSON object")
     fk.set_defaults(func=cmd_fk)
     ik = parser_class(
-        prog="dhsim ik", description="Joint values that reach a pose (inverse kinematics)."
+        prog="dhsim ik",
+        description="Joint values that reach a pose (inverse kinematics). Exit status 0: "
+        "solved; 3: no solution (--json: an object saying why); 2: bad input.",
     )
     ik.add_argument("robot", help="a robot file or a bundled robot's name")
     ik.add_argument("--xyz", required=True, metavar="X,Y,Z", help="target position (robot unit)")

@@ -21,7 +21,9 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import os
+import re
 import sys
 from collections.abc import Sequence
 
@@ -32,10 +34,11 @@ from dhsim_tui.cli.draw import subparsers as draw_subparsers
 from dhsim_tui.cli.files import subparsers as files_subparsers
 from dhsim_tui.cli.kinematics import VALUE_OPTIONS
 from dhsim_tui.cli.kinematics import subparsers as kinematics_subparsers
+from dhsim_tui.cli.library import cmd_list, new_target, note_which, opened_notice
 from dhsim_tui.cli.run import subparsers as run_subparsers
 from dhsim_tui.cli.streams import hold_closed_stderr, silence, to_stderr
 from dhsim_tui.cli.workspace import subparsers as workspace_subparsers
-from dhsim_tui.core.files.library import DEFAULT_ROBOT, bundled_names, describe, load_robot, resolve
+from dhsim_tui.core.files.library import DEFAULT_ROBOT, describe, load_robot, resolve
 from dhsim_tui.core.files.robotfile import load_with_stamp
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.text import SHOWN_CHARS, printable, shortened
@@ -54,10 +57,7 @@ SHOWN_ARGUMENT = SHOWN_CHARS
 LISTED_ARGUMENTS = 3
 #: the longest error line (a last resort: arguments are shortened before)
 MAX_ERROR_CHARS = 1_000
-NEEDS_TERMINAL = (
-    "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check, list, import, export, convert, workspace and draw work without one"
-)
+NEEDS_TERMINAL = "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t)"
 
 
 class UsageError(Exception):
@@ -178,21 +178,35 @@ def _glue_negative_values(argv: list[str]) -> list[str]:
 
 def cmd_check(args: argparse.Namespace) -> int:
     robot, path = load_robot(args.robot)
-    print(printable(f"ok  {describe(robot)}  ({path})"))
+    if args.json:
+        print(check_json(robot, path))
+    else:
+        print(printable(f"ok  {describe(robot)}  ({path})"))
     return 0
 
 
-def cmd_list(args: argparse.Namespace) -> int:
-    status = 0
-    for name in bundled_names():
-        try:
-            robot, _ = load_robot(name)
-        except DhsimError as exc:
-            to_stderr(f"dhsim: error: {printable(str(exc))}")
-            status = EXIT_USAGE
-            continue
-        print(printable(f"{name:<17} {describe(robot)}"))
-    return status
+def check_json(robot, path) -> str:
+    """``dhsim check --json``: the robot's summary as one JSON object (the
+    reach as ``check`` shows it, to the unit's decimals)."""
+    import json
+
+    from dhsim_tui.core.analysis.workspace import arm_reach
+    from dhsim_tui.core.model.robot import LENGTH_DECIMALS
+
+    return json.dumps(
+        {
+            "ok": True,
+            "robot": robot.name,
+            "path": str(path),
+            "units": robot.units,
+            "convention": robot.convention,
+            "joints": robot.dof,
+            "types": robot.type_string,
+            "reach": round(arm_reach(robot), LENGTH_DECIMALS[robot.units]) + 0.0,
+            "poses": list(robot.pose_names),
+            "programs": list(robot.program_names),
+        }
+    )
 
 
 def has_terminal() -> bool:
@@ -233,7 +247,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     from dhsim_tui.tui.app import run_app  # textual loads only for the simulator
 
     return run_app(
-        robot, path, args.renderer, stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+        robot,
+        path,
+        args.renderer,
+        stamp=stamp,
+        ascii=ascii_screen(args),
+        theme=args.theme,
+        notice=opened_notice(args.robot),
     )
 
 
@@ -242,7 +262,13 @@ def cmd_edit(args: argparse.Namespace) -> int:
     from dhsim_tui.tui.app import run_app
 
     return run_app(
-        robot, path, start="edit", stamp=stamp, ascii=ascii_screen(args), theme=args.theme
+        robot,
+        path,
+        start="edit",
+        stamp=stamp,
+        ascii=ascii_screen(args),
+        theme=args.theme,
+        notice=opened_notice(args.robot),
     )
 
 
@@ -250,9 +276,12 @@ def cmd_new(args: argparse.Namespace) -> int:
     from dhsim_tui.core.model.editing import new_robot
 
     robot = new_robot(args.name.strip() or "new robot")  # checked before any UI starts
+    target = new_target(args.output)  # None: the save dialog offers the user library
     from dhsim_tui.tui.app import run_app
 
-    return run_app(robot, None, start="new", ascii=ascii_screen(args), theme=args.theme)
+    return run_app(
+        robot, None, start="new", ascii=ascii_screen(args), theme=args.theme, new_target=target
+    )
 
 
 def _add_charset_options(parser: argparse.ArgumentParser) -> None:
@@ -285,15 +314,29 @@ def _add_charset_options(parser: argparse.ArgumentParser) -> None:
 def _subparsers() -> dict[str, _Parser]:
     check = _Parser(prog="dhsim check", description="Validate a robot and summarise it.")
     check.add_argument("robot", help="a robot file or a bundled robot's name")
+    check.add_argument("--json", action="store_true", help="print one JSON object")
     check.set_defaults(func=cmd_check)
-    listing = _Parser(prog="dhsim list", description="List the bundled robots.")
+    listing = _Parser(
+        prog="dhsim list",
+        description="List your robots (the user library, with their paths) and the bundled ones.",
+    )
+    listing.add_argument(
+        "--json", action="store_true", help='one JSON object: "yours" and "bundled"'
+    )
     listing.set_defaults(func=cmd_list)
     edit = _Parser(prog="dhsim edit", description="Open a robot in the table editor.")
-    edit.add_argument("robot", help="a robot file or a bundled robot's name")
+    edit.add_argument("robot", help="a robot file or a robot's name (yours first, then bundled)")
     _add_charset_options(edit)
     edit.set_defaults(func=cmd_edit)
     new = _Parser(prog="dhsim new", description="Start a new robot in the table editor.")
     new.add_argument("name", nargs="?", default="new robot", help="the robot's name")
+    new.add_argument(
+        "-o",
+        "--output",
+        default=None,
+        metavar="FILE.toml",
+        help="where saving puts it (default: your robot library, see 'dhsim list')",
+    )
     _add_charset_options(new)
     new.set_defaults(func=cmd_new)
     return {
@@ -315,8 +358,9 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
                                  open the simulator (default: the bundled Puma 560)
        dhsim fk ROBOT [--q V1,V2,...] [--pose NAME] [--json]
        dhsim ik ROBOT --xyz X,Y,Z [--oat O,A,T] [--from V1,V2,...] [--all] [--json]
-       dhsim check ROBOT
-       dhsim list
+       dhsim check ROBOT [--json]
+       dhsim list [--json]
+                                 your robots (with their paths), then the bundled ones
        dhsim import FILE.urdf|FILE.csv [--tip LINK] [--base LINK]
                     [--convention standard|modified] [--units mm|cm|m|in] [-o OUT.toml]
        dhsim export ROBOT --format urdf|csv|json [-o FILE]
@@ -332,14 +376,19 @@ usage: dhsim [ROBOT] [--renderer plotext|braille] [--ascii | --unicode]
                                  play a program and check its path (exit 3: problems)
        dhsim edit ROBOT [--ascii | --unicode]
                                  the table editor
-       dhsim new [NAME] [--ascii | --unicode]
-                                 a new robot in the table editor
+       dhsim new [NAME] [-o FILE.toml] [--ascii | --unicode]
+                                 a new robot in the table editor, saved in your
+                                 robot library (or FILE.toml)
 
-ROBOT is a robot file (.toml) or a bundled robot's name, e.g. puma560.
+ROBOT is a robot file (.toml) or a robot's name, e.g. puma560: your robot
+library ($XDG_DATA_HOME/dhsim/robots, else ~/.local/share/dhsim/robots) is
+looked in first, then the bundled robots.
 The simulator draws in 7-bit ASCII when the locale (LC_ALL, LC_CTYPE, LANG)
 is not UTF-8 or TERM=linux; --ascii and --unicode decide instead.
 --theme ansi uses the terminal's own colour palette.
-Run 'dhsim COMMAND --help' for a command's options."""
+Run 'dhsim COMMAND --help' for a command's options.
+dhsim --version prints the version; dhsim --completion bash|zsh prints a
+shell completion script (see the README)."""
 
 
 def _main_parser() -> _Parser:
@@ -386,21 +435,69 @@ def _command(args_list: list[str], stdout) -> int:
         print(f"dhsim {__version__}")
         return 0
     subs = _subparsers()
+    if args_list and args_list[0] == "--completion":
+        print(completion_script(args_list[1:], subs))
+        return 0
     try:
         if args_list and args_list[0] in subs:
             parser = subs[args_list[0]]
             args = parser.parse_args(_glue_negative_values(args_list[1:]))
         else:
+            _refuse_unknown_command(args_list[0] if args_list else None, subs)
             args = _main_parser().parse_args(args_list)
+            _refuse_unknown_command(args.robot, subs)
     except SystemExit as exc:  # argparse after printing a command's --help
         return exc.code if isinstance(exc.code, int) else 0
     if args.func in INTERACTIVE:
         sys.stdout = stdout  # the simulator's terminal, as it was given
         if not has_terminal():
-            to_stderr(NEEDS_TERMINAL)
+            to_stderr(needs_terminal(subs))
             return EXIT_USAGE
+    else:  # the simulator says it on its status line; here stdout is data
+        note_which(getattr(args, "robot", None))
     with np.errstate(all="ignore"):  # a result that lost precision is checked, not warned
         return args.func(args)
+
+
+def needs_terminal(subs: dict[str, _Parser]) -> str:
+    """What ``dhsim`` says without a terminal: every command that works without one."""
+    names = [name for name, parser in subs.items() if parser.get_default("func") not in INTERACTIVE]
+    listed = ", ".join(names[:-1]) + f" and {names[-1]}" if len(names) > 1 else "".join(names)
+    return f"{NEEDS_TERMINAL}; {listed} work without one"
+
+
+def _refuse_unknown_command(word: str | None, subs: dict[str, _Parser]) -> None:
+    """``dhsim bogus``: a word that is neither a command, a file nor a robot's
+    name is an unknown command, said before the simulator looks for a
+    terminal (so in a pipe as well)."""
+    if word is None or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]*", word):
+        return  # a path, a name with a dot: the robot's own error says what is wrong
+    try:
+        resolve(word)
+        return
+    except DhsimError:
+        pass
+    close = difflib.get_close_matches(word, list(subs), n=1)
+    hint = f"did you mean '{close[0]}'? " if close else ""
+    commands = ", ".join(subs)
+    raise UsageError(
+        f"dhsim: error: unknown command '{word}': {hint}the commands are {commands}; "
+        "a robot to open is a robot file (.toml) or a robot's name (see 'dhsim --help')"
+    )
+
+
+def completion_script(args: Sequence[str], subs: dict[str, _Parser]) -> str:
+    """``dhsim --completion bash|zsh``: the script, from the parsers' own options."""
+    from dhsim_tui.cli.completion import SHELLS, script
+    from dhsim_tui.core.files.library import bundled_names
+
+    if len(args) != 1 or args[0] not in SHELLS:
+        given = f"got {' '.join(map(repr, args))}" if args else "got none"
+        raise UsageError(
+            f"dhsim: error: --completion: give one shell, {' or '.join(SHELLS)} ({given}) "
+            "(see 'dhsim --help')"
+        )
+    return script(args[0], subs, _main_parser(), bundled_names())
 
 
 def _run(args_list: list[str], stdout) -> int:

@@ -37,6 +37,17 @@ from dhsim_tui.terminal.locale_env import original_environ, wants_ascii
 
 #: the exit status when the path check found problems
 EXIT_PROBLEMS = 3
+#: ``dhsim run --help``'s last words: the CSV's columns and their units
+CSV_EPILOG = """\
+--csv writes the header row first, then one row per sample:
+  time          s, from the program's start
+  step          the step, 1-based (0: a program without steps)
+  move          joint, linear or wait
+  q1 ... qN     the joints: deg (revolute), the robot's unit (prismatic)
+  x, y, z       the tool point in the world, the robot's unit (as dhsim fk)
+  o, a, t       the tool's orientation, deg (as dhsim fk)
+  mu            the manipulability, dimensionless (below 0.001: singular)
+--json gives each column's unit for the robot as "column_units"."""
 
 
 def rate_value(text: str) -> float:
@@ -100,6 +111,9 @@ def format_run(trajectory, problems) -> str:
 
 def run_json(trajectory, problems) -> str:
     """One JSON object: the run, its steps and its problems (not the samples)."""
+    # the CSV module (and csv) load only when a command needs them, not at start-up
+    from dhsim_tui.core.motion.trajectory_csv import column_units
+
     robot = trajectory.robot
     xyz = robot.kinematics
     steps = [
@@ -123,6 +137,7 @@ def run_json(trajectory, problems) -> str:
             "start": trajectory.q[0].tolist(),
             "duration": trajectory.duration,
             "samples": len(trajectory.time),
+            "column_units": column_units(robot),
             "steps": steps,
             "clean": not problems,
             "problems": [problem.as_dict() for problem in problems],
@@ -201,6 +216,8 @@ def subparsers(parser_class: type[argparse.ArgumentParser]) -> dict[str, argpars
         "moves, waits) and check its path: joint limits, joint speeds, reach and IK "
         "jumps in linear moves, singularities, frames below the floor. Exit status 0: "
         "clean; 3: problems found; 2: bad input.",
+        epilog=CSV_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("robot", help="a robot file or a bundled robot's name")
     parser.add_argument("program", help="the name of one of the robot's programs")

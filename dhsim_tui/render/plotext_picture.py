@@ -35,7 +35,14 @@ from dhsim_tui.render.picture import (
     Picture,
     blank,
 )
-from dhsim_tui.render.ticks import tick_label, tick_values, x_step, y_step
+from dhsim_tui.render.ticks import (
+    on_dots,
+    regular_scale,
+    tick_label,
+    tick_values,
+    x_step,
+    y_step,
+)
 from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import Mark, ViewScene, limits_at
 from dhsim_tui.scene.raster import MARKER, rasterize
@@ -60,6 +67,12 @@ _MARK_ROLE = {mark: ROLE_INDEX[role] for role, mark in ASCII_MARKS.items()}
 #: plotext's frame glyphs in 7-bit ASCII
 _ASCII_FRAME = str.maketrans("─│┤┬└┼┌┐┘├┴", "-|+++++++++")
 _SGR = re.compile(r"\x1b\[[0-9;]*m")
+#: where the ticks' values fall within their cells: on the first of its two
+#: dot columns, on the second of its four dot rows (from the top: the middle
+#: of the cell, where plotext's tick marks point)
+TICK_DOT = (0, 1)
+#: a vertical axis has at least this many labels where its rows allow
+LABELS_AT_LEAST = 3
 #: the smallest picture that still gets axes (columns, rows)
 MIN_SIZE = (30, 8)
 _AXES = ROLE_INDEX["axes"]
@@ -115,25 +128,43 @@ class PlotextPainter:
             return bare_picture(scene, cols, rows, framing, look)
         with_ticks = not scene.view.is_3d  # the 3-D view's scale is in its caption
         canvas_rows = rows - 2 if with_ticks else rows
+        if with_ticks:  # a regular scale: a tick every k rows, on its value's row
+            most = canvas_rows // LABELS_AT_LEAST  # rows apart, to leave that many labels
+            per_dot, vertical, _ = regular_scale(framing.per_dot, most)
+            cx, cy = framing.centre
+            cy = -on_dots(-cy, per_dot, 4 * canvas_rows, TICK_DOT[1], 4)
+            framing = Framing((cx, cy), per_dot)
+        else:
+            vertical = y_step(4 * framing.per_dot)
         # the y labels' width sets the canvas width: find the y ticks first
         _, ylim = limits_at(framing.centre, framing.per_dot, 2, canvas_rows)
-        per_col, per_row = 2 * framing.per_dot, 4 * framing.per_dot
-        # y labels two rows apart; x labels a space apart, as fine as that
-        # allows (the same step on both axes where it can be)
-        vertical = y_step(per_row)
-        across = x_step(self._x_span(framing, cols), per_col, least=vertical)
+        per_col = 2 * framing.per_dot
+        # y labels two rows apart at least; x labels a space apart, as fine
+        # as that allows (the same step on both axes where it can be)
+        # (two spaces: plotext moves a label a column to make room, and then
+        # leaves out its neighbour and its tick where only one was left)
+        across = x_step(self._x_span(framing, cols), per_col, least=vertical, gap=2)
         y_ticks = tick_values(ylim, vertical) if with_ticks else []
         y_labels = [tick_label(v, vertical) for v in y_ticks]
         label_width = max((len(label) for label in y_labels), default=0)
         left = label_width + 1 if with_ticks else 0
         canvas_cols = cols - left
+        if with_ticks:
+            cx = on_dots(framing.centre[0], framing.per_dot, 2 * canvas_cols, TICK_DOT[0], 2)
+            framing = Framing((cx, framing.centre[1]), framing.per_dot)
         xlim, ylim = limits_at(framing.centre, framing.per_dot, canvas_cols, canvas_rows)
         x_ticks = tick_values(xlim, across) if with_ticks else []
+        if with_ticks:  # a label too near the edge plotext moves in, over its neighbour's
+            x_ticks = _centred_fit(x_ticks, across, left, cols, xlim[0], framing.per_dot)
         x_labels = [tick_label(v, across) for v in x_ticks]
         canvas = (left, 0, canvas_cols, canvas_rows)
         if not all(map(math.isfinite, (*xlim, *ylim, *x_ticks, *y_ticks))):
             return bare_picture(scene, cols, rows, framing, look)
-        layout = (cols, rows, xlim, ylim, tuple(x_ticks), tuple(y_ticks), with_ticks)
+        middles = (
+            cell_middles(xlim, framing.per_dot, 2),
+            cell_middles(ylim, framing.per_dot, 4),
+        )
+        layout = (cols, rows, *middles, tuple(x_ticks), tuple(y_ticks), with_ticks)
         if look.ascii:  # plotext draws the lines too, with ASCII markers
             self._layout(layout, x_labels, y_labels)
             self._ascii_lines(scene, xlim, ylim)
@@ -161,7 +192,7 @@ class PlotextPainter:
         fig.xaxes(with_ticks, False)
         fig.yaxes(with_ticks, False)
         fig.plot_size(cols, rows)
-        fig.xlim(*xlim)
+        fig.xlim(*xlim)  # the middles of the first and last cells (cell_middles)
         fig.ylim(*ylim)
         fig.xticks(list(x_ticks), x_labels)
         fig.yticks(list(y_ticks), y_labels)
@@ -213,6 +244,31 @@ class PlotextPainter:
             if xlim[0] <= mark.x <= xlim[1] and ylim[0] <= mark.y <= ylim[1]:
                 self.figure.scatter([mark.x], [mark.y], marker=ASCII_MARKS[mark.role])
         return None
+
+
+def _centred_fit(ticks: list[float], step: float, left: int, cols: int, x0: float, per_dot):
+    """The x ticks whose labels fit centred under their columns (a column
+    ``left`` + the cell of the value's dot), within the picture's width and
+    short of its last column: plotext moves a label in from there, over its
+    neighbour's, and then leaves one of them out with its tick."""
+    kept = []
+    for value in ticks:
+        width = len(tick_label(value, step))
+        col = left + round((value - x0) / per_dot) // 2 if per_dot > 0 else left
+        start = col - width // 2
+        if start >= 0 and start + width <= cols - 1:
+            kept.append(value)
+    return kept
+
+
+def cell_middles(lim: tuple[float, float], per_dot: float, dots: int) -> tuple[float, float]:
+    """The limits of a picture's axis (its outermost dots, ``per_dot``
+    apart), moved in to the middles of its first and last cells of
+    ``dots`` dots: plotext's limits. plotext places a value in the cell
+    whose middle is nearest it, which is then the cell the braille raster
+    draws it in."""
+    half = (dots - 1) / 2 * per_dot
+    return lim[0] + half, lim[1] - half
 
 
 def braille_cells(scene: ViewScene, cols: int, rows: int, xlim, ylim, look: Look):

@@ -1,12 +1,14 @@
 """Where each view looks and how close: the framings the simulator's views
 and ``dhsim draw`` share.
 
-* **The work area** (the default): the three orthographic views share one
+* **The work area** (``0``, or ``F`` from fitted): the three orthographic views share one
   scale, the smallest that shows the seed's work area in each (100 mm is as
   many columns in every view), each centred on its part of it; the 3-D view
   shows the floor and the arm (``oblique.picture_bounds``).
-* **Fitted** (``F``, ``dhsim draw --fit``): each view on the arm as it
-  stands, links, joints, tool and the frame axes drawn, with a small margin.
+* **Fitted** (the simulator's views as they open, ``F``, ``dhsim draw
+  --fit``): each view on the arm as it stands, links, joints, tool and the
+  frame axes drawn, and the program's path while one is drawn, with a
+  small margin.
 
 A framing is a centre in the view's plane and the length one braille dot
 stands for; ``zoomed`` narrows it. No UI here: the views panel keeps the
@@ -62,7 +64,8 @@ def work_area_framings(
 
 
 def fit_bounds(scene: ViewScene) -> tuple[float, float, float, float]:
-    """What ``F`` keeps in the picture: the links, joints, tool and the axes drawn."""
+    """What ``F`` keeps in the picture: the links, joints, tool, the axes
+    drawn and the program's path drawn."""
     return scene.fit_bounds or scene.arm_bounds or scene.bounds
 
 
@@ -78,6 +81,14 @@ def links_share(
     return max((links[1] - links[0]) / (x1 - x0), (links[3] - links[2]) / (y1 - y0))
 
 
+def _union(
+    a: tuple[float, float, float, float] | None, b: tuple[float, float, float, float] | None
+) -> tuple[float, float, float, float] | None:
+    if a is None or b is None:
+        return a or b
+    return (min(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), max(a[3], b[3]))
+
+
 def fitted(scene: ViewScene, cols: int, rows: int, least: float) -> Framing:
     """The view on the arm as it stands: its links, joints, tool and the
     frame axes drawn, with a small margin; never narrower than ``least``
@@ -85,9 +96,10 @@ def fitted(scene: ViewScene, cols: int, rows: int, least: float) -> Framing:
 
     Axes that would leave the links less than ``LINKS_SHARE`` of the
     picture (long axes of frames sharing an origin, an arm seen nearly
-    end-on) are let run off its edge: the picture is fitted to the links."""
+    end-on) are let run off its edge: the picture is fitted to the links
+    (and the program's path, when one is drawn)."""
     framing = framing_of(fit_framing_bounds(fit_bounds(scene), least), cols, rows)
-    links = scene.arm_bounds
+    links = _union(scene.arm_bounds, scene.path_bounds)
     if links is None or links_share(links, framing, cols, rows) >= LINKS_SHARE:
         return framing
     return framing_of(fit_framing_bounds(links, least), cols, rows)

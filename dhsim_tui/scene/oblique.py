@@ -27,7 +27,14 @@ from typing import ClassVar
 import numpy as np
 
 from dhsim_tui.core.analysis.workspace import WorkArea
-from dhsim_tui.scene.projection import ISO, Polyline, View, ViewScene, wire_lines
+from dhsim_tui.scene.projection import (
+    ISO,
+    Polyline,
+    View,
+    ViewScene,
+    path_extent,
+    wire_lines,
+)
 from dhsim_tui.scene.wireframe import Wireframe
 
 #: the isometric elevation, atan(1 / sqrt 2) = 35.26...°
@@ -216,6 +223,7 @@ def project_oblique(wire: Wireframe, orbit: Orbit = Orbit(), frames: str = "all"
         grid_step=step,
         marks=marks,
         fit_bounds=fit,
+        path_bounds=path_extent(wire, to_2d),
     )
 
 

@@ -131,8 +131,11 @@ class ViewScene:
     grid_step: float | None = None
     #: the joints and the tool, drawn over everything (the tool last)
     marks: tuple[Mark, ...] = ()
-    #: what F fits the view to: the links, tool, joints and the axes drawn
+    #: what F fits the view to: the links, tool, joints and the axes drawn,
+    #: and the program's path (``path_bounds``) when one is drawn
     fit_bounds: tuple[float, float, float, float] | None = None
+    #: the program's path drawn (the trail), or None
+    path_bounds: tuple[float, float, float, float] | None = None
 
 
 def extent(xs: np.ndarray, ys: np.ndarray) -> tuple[float, float, float, float]:
@@ -155,7 +158,8 @@ def wire_lines(
     the given floor lines, pedestal, the axes of the frames ``frames`` shows
     (``FRAME_MODES``) and the links over them; the axis tips, the end
     effector, the arm's extent, the joints' and the tool's marks and what
-    ``F`` fits (links, joints, tool and the axes drawn), in the projection's plane."""
+    ``F`` fits (links, joints, tool, the axes drawn and the program's path),
+    in the projection's plane."""
 
     def line(points: np.ndarray, role: str) -> Polyline:
         xs, ys = to_2d(points)
@@ -187,7 +191,7 @@ def wire_lines(
     ex, ey = to_2d(wire.end_effector[None, :])
     marks.append(Mark(float(ex[0]), float(ey[0]), "tool"))
     arm_x, arm_y = to_2d(np.vstack([wire.links, wire.origins]))
-    fit_x, fit_y = to_2d(np.vstack([wire.links, wire.end_effector[None, :], *ends]))
+    fit_x, fit_y = to_2d(np.vstack([wire.links, wire.end_effector[None, :], *ends, *_path(wire)]))
     return (
         tuple(lines),
         tuple(tips),
@@ -196,6 +200,17 @@ def wire_lines(
         tuple(marks),
         extent(fit_x, fit_y),
     )
+
+
+def _path(wire: Wireframe) -> list[np.ndarray]:
+    """The program's path drawn (the trail's points), as a list of none or one."""
+    return [wire.trail] if wire.trail is not None and len(wire.trail) > 1 else []
+
+
+def path_extent(wire: Wireframe, to_2d) -> tuple[float, float, float, float] | None:
+    """The extent of the program's path drawn, in the projection's plane, or None."""
+    path = _path(wire)
+    return extent(*to_2d(path[0])) if path else None
 
 
 def project(wire: Wireframe, view: View, frames: str = "all") -> ViewScene:
@@ -231,6 +246,7 @@ def project(wire: Wireframe, view: View, frames: str = "all") -> ViewScene:
         arm,
         marks=marks,
         fit_bounds=fit,
+        path_bounds=path_extent(wire, to_2d),
     )
 
 

@@ -119,6 +119,12 @@ class DhsimApp(KeysInOrder):
         self.exit_messages: list[str] = []
         self._palette: DhsimPalette | None = None  # the last one opened
         self.sub_title = robot.name
+        #: the status line's first message: which robot a name opened
+        #: (yours or the bundled one); run_app sets it
+        self.notice: str | None = None
+        #: where a new robot (``dhsim new -o FILE``) is saved: the save
+        #: dialog offers it instead of the user library
+        self.new_target: Path | None = None
 
     def get_key_display(self, binding: Binding) -> str:
         """The footer's name for a key; in ASCII mode ``^/v``, ``</>``, ``enter``."""
@@ -133,7 +139,10 @@ class DhsimApp(KeysInOrder):
         # pushed (not the default screen) so that switch_screen can replace it;
         # the editor's own start shows no simulator behind its first question
         if self.start == "control":
-            self.push_screen(ControlScreen(self.robot, self.renderer, self.animate))
+            control = ControlScreen(self.robot, self.renderer, self.animate)
+            if self.notice:
+                control.say(self.notice)  # shown once the screen is up
+            self.push_screen(control)
         else:
             what = "a new robot" if self.start == "new" else printable(self.robot.name)
             self.push_screen(StartScreen(shown(f"dhsim: opening the editor on {what}…", self)))
@@ -291,7 +300,15 @@ class DhsimApp(KeysInOrder):
         except DhsimError as exc:
             self.say(f"picture not saved: {exc}", error=True)
             return None
-        self.say(f"picture saved: {path.resolve()}")
+        from dhsim_tui.core.model.text import shortened
+
+        # the path on a line of the status of its own, shortened in the middle: its name whole
+        where, status = path.resolve(), next(iter(self.screen.query("#status")), None)
+        room = max(status.content_size.width if status else 60, len(where.name) + 8)
+        text = str(where)
+        if len(text) > room:
+            text = f"{shortened(str(where.parent), room - len(where.name) - 1)}/{where.name}"
+        self.say(f"picture saved: {text}")
         return path
 
     def action_save_picture(self) -> None:
@@ -386,12 +403,16 @@ def run_app(
     stamp: FileStamp | None = None,
     ascii: bool = False,
     theme: str = "dark",
+    notice: str | None = None,
+    new_target: Path | None = None,
 ) -> int:
     """Run the TUI in this terminal; the exit status (1 after an unexpected error,
-    128 + the signal's number after SIGHUP, SIGTERM or SIGQUIT)."""
+    128 + the signal's number after SIGHUP, SIGTERM or SIGQUIT). ``notice``:
+    the status line's first message; ``new_target``: where a new robot is saved."""
     app = DhsimApp(
         robot, path, renderer, start, recovery=True, stamp=stamp, ascii=ascii, theme=theme
     )
+    app.notice, app.new_target = notice, new_target
     guard = SignalGuard(app, app.keep_unsaved_work)
     guard.install()
     try:

@@ -95,7 +95,7 @@ def test_every_csv_row_is_dhsim_fk_at_its_joints(capsys, tmp_path):
     code, stdout, err = run(capsys, "run", "puma560", "demo", "--csv", str(out), "--rate", "20")
     assert code == 0 and err == "" and f"wrote {out}" in stdout
     text = out.read_text(encoding="utf-8")
-    assert text.startswith('# dhsim trajectory: robot "Puma 560", program "demo", 20 Hz; units:')
+    assert text.startswith("time,step,move,q1,q2,q3,q4,q5,q6,x,y,z,o,a,t,mu\n")
     rows = rows_of(text)
     assert 150 < len(rows) < 170
     for row in rows:
@@ -110,7 +110,7 @@ def test_every_csv_row_is_dhsim_fk_at_its_joints(capsys, tmp_path):
 def test_csv_to_stdout_sends_the_report_to_stderr(capsys):
     code, out, err = run(capsys, "run", "puma560", "demo", "--csv", "-", "--rate", "10")
     assert code == 0
-    assert out.startswith("# dhsim trajectory") and len(rows_of(out)) == 80 - 3  # the wait: 2 of 5
+    assert out.startswith("time,step,move,") and len(rows_of(out)) == 80 - 3  # the wait: 2 of 5
     assert err.startswith("Puma 560: program 'demo'")
 
 
@@ -121,7 +121,7 @@ def test_an_existing_csv_needs_force(capsys, tmp_path):
     assert code == 2 and stdout == "" and "--force replaces it" in err
     assert out.read_text() == "keep me\n"
     code, _, _ = run(capsys, "run", "puma560", "demo", "--csv", str(out), "--force")
-    assert code == 0 and out.read_text().startswith("# dhsim trajectory")
+    assert code == 0 and out.read_text().startswith("time,step,move,")
 
 
 def test_the_start_and_the_rate(capsys):

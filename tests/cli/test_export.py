@@ -545,7 +545,9 @@ def _check_csv(robot: Robot) -> None:
         assert row[:2] == [str(number), "R" if joint.is_revolute else "P"]
         expected = [joint.theta, joint.d, joint.a, joint.alpha, joint.offset, joint.min, joint.max]
         assert [float(v) for v in row[2:]] == expected  # exact
-    assert _robot_from_csv(text) == replace(robot, programs=())  # a D-H table: no programs
+    # a D-H table: no programs, no joint speeds (the JSON and the robot file carry those)
+    table = tuple(replace(joint, vmax=None, amax=None) for joint in robot.joints)
+    assert _robot_from_csv(text) == replace(robot, joints=table, programs=())
 
 
 @pytest.mark.parametrize("name", BUNDLED)
@@ -631,7 +633,12 @@ def _check_json(robot: Robot) -> None:
     rebuilt = Robot(
         name=data["name"],
         joints=tuple(
-            Joint(j["type"], *(j[k] for k in ("theta", "d", "a", "alpha", "min", "max", "offset")))
+            Joint(
+                j["type"],
+                *(j[k] for k in ("theta", "d", "a", "alpha", "min", "max", "offset")),
+                vmax=j.get("vmax"),
+                amax=j.get("amax"),
+            )
             for j in data["joints"]
         ),
         units=data["units"]["length"],

@@ -169,7 +169,7 @@ def test_with_stderr_full_or_closed_run_keeps_status_3_and_stdout_holds_only_the
     assert reference.returncode == 3
     assert "problem" in reference.stderr  # the report goes to stderr when stdout is the CSV
     csv_text = reference.stdout
-    assert csv_text.startswith("# dhsim trajectory") and "problem" not in csv_text
+    assert csv_text.startswith("time,step,move,") and "problem" not in csv_text
     with open(FULL, "w") as full:
         done = dhsim(*argv, stderr=full)
     assert (done.returncode, done.stdout) == (3, csv_text)

@@ -411,7 +411,7 @@ def test_cli_all_json_is_ordered_from_the_start(capsys):
     )
     assert code == 0 and err == ""
     data = json.loads(out)
-    assert list(data) == ["robot", "units", "method", "family", "solutions"]
+    assert list(data) == ["robot", "units", "solved", "method", "family", "solutions"]
     assert (data["robot"], data["units"], data["method"], data["family"]) == (
         "Puma 560",
         "mm",
@@ -429,10 +429,10 @@ def test_cli_all_json_is_ordered_from_the_start(capsys):
         assert _pose_errors(robot, s["q"], target)[0] < 1e-6 * reach(robot)
 
 
-def test_cli_all_without_a_solution_is_one_line_exit_2(capsys):
+def test_cli_all_without_a_solution_is_one_line_exit_3(capsys):
     code, out, err = _run(capsys, "ik", "puma560", "--xyz", "5000,0,0", "--oat", "0,0,0", "--all")
-    assert code == 2 and out == ""
-    assert err.count("\n") == 1 and err.startswith("dhsim: error: no solution for Puma 560: ")
+    assert code == 3 and out == ""
+    assert err.count("\n") == 1 and err.startswith("dhsim: no solution for Puma 560: ")
     assert "out of reach" in err
 
 

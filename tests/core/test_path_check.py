@@ -96,13 +96,52 @@ def test_a_joint_faster_than_its_top_speed(puma):
     )
     found = only(problems, SPEED)
     assert [(p.step, p.subject) for p in found] == [(1, "Th3")]
-    assert "over its top speed 90 deg/s" in found[0].detail
+    # the Puma has no vmax: the message says the 90 deg/s is the default
+    assert "over the default top speed 90 deg/s (no vmax)" in found[0].detail
     assert not speeds_within_limits(trajectory)
     dt = np.diff(trajectory.time)
     fast = np.abs(np.diff(trajectory.q[:, 2])) / dt > 90.0
     first = trajectory.time[1:][fast][0]
     assert found[0].time == first
     assert_placed(trajectory, problems)
+
+
+def test_a_speed_problem_names_a_given_top_speed_as_the_robots(puma):
+    joints = list(puma.joints)
+    joints[2] = replace(joints[2], vmax=60.0)
+    faster = replace(puma, joints=tuple(joints))
+    _, problems = problems_of(
+        faster, Step("linear", "qn", speed=100.0), start=(0, 45, -90, 0, 45, 0)
+    )
+    (found,) = only(problems, SPEED)
+    assert "over its top speed 60 deg/s" in found.detail
+    assert "default" not in found.detail and "vmax" not in found.detail
+
+
+def test_each_problem_names_its_subject_once_and_its_kind_once(puma):
+    """The status line shows ``message``, ``dhsim run`` ``kind: detail``:
+    neither says "Th3 Th3" or "singular: singular"."""
+    _, problems = problems_of(
+        puma,
+        Step("linear", "qn", speed=100.0),
+        Step("joint", (160, 45, -150, 0, 0, 0)),
+        Step("wait", seconds=0.1),
+        Step("linear", (160, 40, -140, 0, 0, 0)),
+        start=(0, 45, -90, 0, 45, 0),
+    )
+    assert {p.kind for p in problems} >= {LIMIT, SPEED, SINGULAR}
+    for problem in problems:
+        assert problem.message.count(problem.subject) <= 1 or problem.subject == "tool"
+        assert not problem.message.startswith(f"{problem.subject} {problem.subject}")
+        assert f"{problem.kind}: {problem.kind}" not in f"{problem.kind}: {problem.detail}"
+        if problem.kind != SINGULAR:
+            assert problem.message == problem.detail
+            assert problem.message.startswith(problem.subject)
+    speed = only(problems, SPEED)[0]
+    assert speed.message.startswith(f"{speed.subject} at ") and " deg/s, over " in speed.message
+    singular = only(problems, SINGULAR)[0]
+    assert singular.message.startswith("singular in a linear move, manipulability ")
+    assert singular.detail.startswith("in a linear move")
 
 
 def test_a_linear_move_that_leaves_the_reachable_space(puma):

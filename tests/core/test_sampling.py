@@ -101,3 +101,9 @@ def test_a_long_program_is_checked_in_no_more_memory_than_its_samples(puma):
         assert peak - held < 0.5 * size
     finally:
         tracemalloc.stop()
+
+
+def test_step_texts_have_no_negative_zero_or_float_noise():
+    step = Step("joint", (10.000000000000002, -0.0, -90.0, 431.8, 1e-12, 2.0), speed=49.99999999)
+    assert step.describe() == "joint to [10, 0, -90, 431.8, 0, 2] at 50%"
+    assert Step("wait", seconds=0.30000000000000004).describe() == "wait 0.3 s"

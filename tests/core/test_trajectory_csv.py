@@ -19,7 +19,7 @@ from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.program import MAX_STEPS, Program, Step
 from dhsim_tui.core.motion.trajectory import sample
-from dhsim_tui.core.motion.trajectory_csv import csv_text, program_from_csv
+from dhsim_tui.core.motion.trajectory_csv import column_units, csv_text, program_from_csv
 
 #: the OAT reference orientation and R(O, A, T) = Rz(O) R0 Ry(A) Rz(T), from the reference
 R0 = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, -1.0], [-1.0, 0.0, 0.0]])
@@ -52,23 +52,27 @@ def demo():
     return robot, sample(robot, robot.program("demo"))
 
 
-def test_the_header_names_the_units_and_the_columns(demo):
-    _, trajectory = demo
-    comments, rows = read(csv_text(trajectory))
-    assert len(comments) == 1
-    head = comments[0]
-    assert '"Puma 560"' in head and '"demo"' in head and "100 Hz" in head
-    for unit in ("time s", "q1 deg", "q6 deg", "x y z mm", "o a t deg", "mu dimensionless"):
-        assert unit in head
-    assert list(rows[0]) == [
-        "time",
-        "step",
-        "move",
-        *(f"q{i}" for i in range(1, 7)),
-        *"xyz",
-        *"oat",
-        "mu",
-    ]
+def test_the_header_row_comes_first_and_names_the_columns(demo):
+    robot, trajectory = demo
+    text = csv_text(trajectory)
+    comments, rows = read(text)
+    assert comments == [] and text.startswith("time,step,move,q1,")
+    units = column_units(robot)
+    assert (units["time"], units["q1"], units["q6"], units["x"]) == ("s", "deg", "deg", "mm")
+    assert (units["o"], units["mu"]) == ("deg", None)
+    assert (
+        list(rows[0])
+        == list(units)
+        == [
+            "time",
+            "step",
+            "move",
+            *(f"q{i}" for i in range(1, 7)),
+            *"xyz",
+            *"oat",
+            "mu",
+        ]
+    )
     assert len(rows) == len(trajectory.time)
     assert [int(r["step"]) for r in rows] == trajectory.step.tolist()
     assert {r["move"] for r in rows} == {"joint", "linear", "wait"}

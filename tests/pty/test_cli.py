@@ -241,10 +241,24 @@ def test_check_file_path(capsys, tmp_path):
         assert fragment in out, fragment
 
 
+def listed_bundled(out: str) -> list[str]:
+    """``dhsim list``'s bundled group: the indented lines after "bundled:"
+    (the "yours (LIBRARY):" group comes first)."""
+    lines = out.splitlines()
+    assert "bundled:" in lines, out
+    group = lines[lines.index("bundled:") + 1 :]
+    assert all(line.startswith("  ") for line in group), out
+    return group
+
+
 def test_list_shows_every_bundled_robot(capsys):
     code, out, err = run(capsys, "list")
     assert (code, err) == (0, "")
-    lines = out.splitlines()
+    library = Path(os.environ["XDG_DATA_HOME"]) / "dhsim" / "robots"
+    assert out.splitlines()[0] == (
+        f"yours ({library}): none yet ('dhsim new NAME' saves one there)"
+    )  # each test's own, empty library
+    lines = listed_bundled(out)
     assert len(BUNDLED_STEMS) >= 10
     assert [line.split()[0] for line in lines] == BUNDLED_STEMS
     puma = next(line for line in lines if line.split()[0] == "puma560")
@@ -473,8 +487,7 @@ def test_ik_position_only_plain_output(capsys):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (("ik", "puma560", "--xyz", "5000,0,0"), "no solution for Puma 560: out of reach"),
-        (("ik", "planar2", "--xyz", "1,1,1"), "no solution"),
+        # no solution is exit 3, not 2: tests/cli/test_conventions.py
         (("ik", "puma560", "--xyz", "1,2"), "--xyz: expected 3 numbers"),
         (("ik", "puma560", "--xyz", "1,2,a"), "--xyz: item 3 ('a') is not a number"),
         (("ik", "puma560", "--xyz", "1,2,3", "--oat", "1,2"), "--oat: expected 3 angles"),
@@ -492,9 +505,10 @@ def test_ik_bad_input_exits_2_with_one_line(capsys, argv, message):
 
 NEEDS_TERMINAL = (
     "dhsim: the simulator needs an interactive terminal (over SSH use ssh -t); "
-    "fk, ik, check, list, import, export, convert, workspace and draw work without one\n"
+    "fk, ik, check, list, import, export, convert, workspace, draw and run work without one\n"
 )
-INTERACTIVE_ARGV = [[], ["puma560"], ["edit", "puma560"], ["new"], ["no_such_robot"]]
+#: a bare word that is no robot is an unknown command (tests/cli/test_conventions.py)
+INTERACTIVE_ARGV = [[], ["puma560"], ["edit", "puma560"], ["new"], ["no_such_robot.toml"]]
 
 
 def dhsim_script() -> str:
@@ -578,16 +592,16 @@ def test_list_works_without_a_terminal():
         [dhsim_script(), "list"], stdin=subprocess.DEVNULL, capture_output=True, timeout=HANG
     )
     assert (result.returncode, result.stderr) == (0, b"")
-    assert [line.split()[0] for line in result.stdout.decode().splitlines()] == BUNDLED_STEMS
+    assert [line.split()[0] for line in listed_bundled(result.stdout.decode())] == BUNDLED_STEMS
 
 
 def test_simulator_in_a_terminal_refuses_a_bad_robot_before_any_ui():
-    with PtyScreen(["no_such_robot"]) as shell:
+    with PtyScreen(["no_such_robot.toml"]) as shell:  # a bare word: an unknown command
         status = shell.wait_exit()
         raw = shell.raw_bytes()
         shown = shell.screen_text()
     assert status == 2
-    assert "no_such_robot: no such file" in shown
+    assert "no_such_robot.toml: no such file" in shown
     assert b"\x1b[?1049h" not in raw  # the alternate screen was never entered
 
 

@@ -412,7 +412,8 @@ def test_no_numpy_warning_with_tiny_or_huge_values(tmp_path):
     )
     assert inner.returncode == 0 and inner.stderr == "", inner.stderr
     for argv, code, err in json.loads(inner.stdout):
-        assert code in (0, 2), (argv, err)  # 1 would be a warning turned into an error
+        # 3: ik found no solution; 1 would be a warning turned into an error
+        assert code in (0, 2, 3), (argv, err)
         assert "Warning" not in err and "internal error" not in err, (argv, err)
         assert len(err.splitlines()) <= 1, (argv, err)
     outcome = {tuple(argv): (code, err) for argv, code, err in json.loads(inner.stdout)}
@@ -422,7 +423,7 @@ def test_no_numpy_warning_with_tiny_or_huge_values(tmp_path):
     result = dhsim(
         "ik", str(small), "--xyz", "1e-9,0,0", env={**os.environ, "PYTHONWARNINGS": "error"}
     )
-    assert result.returncode == 2 and b"Warning" not in result.stderr
+    assert result.returncode == 3 and b"Warning" not in result.stderr  # 3: no solution
     assert len(result.stderr.splitlines()) == 1
 
 
@@ -439,8 +440,8 @@ def test_an_unexpected_error_is_one_line_and_status_1(capsys, monkeypatch):
 
 def test_an_unexpected_error_in_the_real_process_exits_1_without_traceback():
     script = (
-        "import sys, dhsim_tui.cli.main as c\n"
-        "c.describe = lambda robot: 1 / 0\n"
+        "import sys, dhsim_tui.cli.main as c, dhsim_tui.cli.library as library\n"
+        "library.describe = lambda robot: 1 / 0\n"  # what 'dhsim list' calls
         "sys.exit(c.main(['list']))\n"
     )
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=HANG)
@@ -565,6 +566,12 @@ def test_a_solution_that_lost_precision_is_refused_not_printed(capsys, monkeypat
         return dataclasses.replace(result, q=(math.nan,) * len(result.q))
 
     monkeypatch.setattr(cli_kinematics, "inverse", lossy)
-    code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0", "--json")
-    assert_one_line(code, err)
+    code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0")
+    assert_one_line(code, err, expected_code=3)  # 3: no solution
     assert out == "" and "the solver lost precision" in err
+    # with --json the answer is an object on stdout saying why, never the NaN
+    code, out, err = run(capsys, "ik", "planar2", "--xyz", "1,1,0", "--json")
+    assert (code, err) == (3, "")
+    answer = json.loads(out)
+    assert answer["solved"] is False and answer["reason"] == "the solver lost precision"
+    assert "q" not in answer and "nan" not in out.lower()

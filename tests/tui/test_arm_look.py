@@ -322,8 +322,7 @@ async def test_x_cycles_the_frames_and_the_legend_and_captions_say_which():
             roles = front.picture.roles
             return int(sum((roles == ROLE_INDEX[r]).sum() for r in "xyz"))
 
-        await press(pilot, "F")  # close up: the axes of every frame show
-        await pilot.pause()
+        # the views open close up, fitted to the arm: the axes of every frame show
         every = axis_cells()
         assert "frames: all (x)" in str(legend.render())
         await press(pilot, "x")

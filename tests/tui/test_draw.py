@@ -177,10 +177,33 @@ async def test_i_saves_the_screen_as_an_svg_in_the_working_folder(tmp_path, monk
         assert root.tag == f"{SVG}svg"
         assert "Th1" in picture.read_text(encoding="utf-8")  # what the screen showed
         status = str(app.screen.query_one("#status").render())
-        assert f"picture saved: {picture.resolve()}" in status
+        assert status.startswith("picture saved: ") and status.endswith(f"/{picture.name}")
         await press(pilot, "i")  # again in the same second: a new name, nothing replaced
         await pilot.pause()
         assert len(list(tmp_path.glob("dhsim-Puma_560-*.svg"))) == 2
+
+
+@pytest.mark.parametrize("size", [(120, 36), (80, 24)])
+async def test_a_long_path_is_shortened_in_the_middle_never_at_its_end(size, tmp_path, monkeypatch):
+    deep = tmp_path.joinpath(*(f"a-rather-long-folder-name-{n}" for n in range(4)))
+    deep.mkdir(parents=True)
+    monkeypatch.chdir(deep)
+    app = _app()
+    async with app.run_test(size=size) as pilot:
+        await started(pilot)
+        await press(pilot, "i")
+        await pilot.pause()
+        (picture,) = list(deep.glob("dhsim-Puma_560-*.svg"))
+        status = app.screen.query_one("#status")
+        said = str(status.render())
+        head, _, path = said.partition("picture saved: ")
+        assert not head and path.endswith(f"/{picture.name}") and " … " in path
+        head = path.split(" … ")[0]
+        assert head and str(deep).startswith(head)  # the start of the path, then its end
+        # the whole message is on the screen: no line of it cut
+        lines = status.render_lines(status.region.reset_offset)
+        shown = "".join(strip.text for strip in lines).replace(" ", "")
+        assert said.replace(" ", "").replace("\n", "") in shown
 
 
 async def test_a_picture_that_cannot_be_written_says_why(tmp_path, monkeypatch):

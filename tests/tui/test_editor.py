@@ -8,11 +8,13 @@ import pytest
 from pilot_helpers import press, showing, started
 
 from dhsim_tui.core import dumps, load, load_robot, loads, save
+from dhsim_tui.core.files.library import user_library_dir
 from dhsim_tui.core.model.editing import new_robot
 from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import Choice, Confirm, SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen
+from dhsim_tui.tui.screens.editor_table import JOINT_COLUMNS
 from dhsim_tui.tui.screens.open_robot import OpenRobot
 from dhsim_tui.tui.screens.value_entry import ValueEntry
 
@@ -85,15 +87,17 @@ async def test_edit_a_cell_and_undo_redo():
 @pytest.mark.parametrize(
     ("column", "typed", "message"),
     [
-        (5, "abc", "'abc' is not a number"),
-        (5, "", "type a number"),
-        (5, "nan", "NaN"),
-        (5, "inf", "out of range"),
-        (5, "1e400", "out of range"),
-        (2, "200", "home value 200 deg is outside the joint's limits -160..160"),
-        (6, "200", "home value -200 deg (theta - offset) is outside"),
-        (7, "160", "min (160) must be less than max (160)"),
-        (8, "-170", "min (-160) must be less than max (-170)"),
+        ("alpha", "abc", "'abc' is not a number"),
+        ("alpha", "", "type a number"),
+        ("alpha", "nan", "NaN"),
+        ("alpha", "inf", "out of range"),
+        ("alpha", "1e400", "out of range"),
+        ("theta", "200", "home value 200 deg is outside the joint's limits -160..160"),
+        ("theta", "x", "joint 1 theta: 'x' is not a number"),
+        ("offset", "1e400", "joint 1 offset: inf is out of range"),
+        ("home", "200", "home value 200 deg is outside the joint's limits -160..160"),
+        ("min", "160", "min (160) must be less than max (160)"),
+        ("max", "-170", "min (-160) must be less than max (-170)"),
     ],
 )
 async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tmp):
@@ -104,7 +108,7 @@ async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tm
     app = editor_app(load(file), file)
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
-        await edit_cell(pilot, 0, column, typed)
+        await edit_cell(pilot, 0, JOINT_COLUMNS.index(column), typed)
         assert isinstance(app.screen, ValueEntry)
         assert message in error_text(app)
         assert app.screen.query_one("Input").value == typed  # kept to be fixed
@@ -120,6 +124,8 @@ async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same()
         await started(pilot)
         before = editor(app).robot
         await edit_cell(pilot, 1, 6, "-90")  # joint 2 offset
+        assert isinstance(app.screen, Choice)  # which stays: theta (first), or home
+        await press(pilot, "enter")
         robot = editor(app).robot
         assert robot.joints[1].offset == -90.0 and robot.joints[1].theta == 0.0
         assert robot.home[1] == 90.0  # joint value = theta - offset
@@ -127,9 +133,10 @@ async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same()
             robot.kinematics.pose(robot.home).tolist()
             == before.kinematics.pose(before.home).tolist()
         )
-        assert "joint 2 offset = -90 deg" in status(app)
+        assert "joint 2 offset = -90 deg (theta kept)" in status(app)
         table = editor(app).query_one("#joints-table")
         assert str(table.get_cell_at((1, 6))) == "-90"
+        assert str(table.get_cell_at((1, JOINT_COLUMNS.index("home")))) == "90"
 
 
 async def test_toggle_type_moves_the_variable():
@@ -143,9 +150,12 @@ async def test_toggle_type_moves_the_variable():
         assert joint.type == "prismatic" and joint.home == 150.05
         assert (joint.min, joint.max) == (-400.0, 400.0)
         table.move_cursor(row=2, column=1)
-        await press(pilot, "enter")  # enter on the type column toggles too
-        assert editor(app).robot.joints[2].type == "revolute"
-        assert editor(app).robot.joints[2].min == -180.0
+        await press(pilot, "enter")  # enter on the type column: a choice
+        assert isinstance(app.screen, Choice)
+        await press(pilot, "up", "enter")
+        joint = editor(app).robot.joints[2]
+        assert joint.type == "revolute"
+        assert (joint.min, joint.max) == (-225.0, 45.0)  # its own limits, back
 
 
 async def test_add_delete_and_move_joints():
@@ -276,8 +286,9 @@ async def test_poses_add_edit_delete():
         assert "mine" not in editor(app).robot.pose_names
 
 
-async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
+async def test_new_robot_save_reopen_change_alpha_undo(in_tmp, monkeypatch):
     """The issue's 'done when': the seed's SCARA from nothing, all by keyboard."""
+    monkeypatch.setenv("HOME", str(in_tmp / "home"))  # "~" below: never outside this test
     app = DhsimApp(new_robot("my scara"), None, start="new")
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -291,8 +302,8 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
         await edit_cell(pilot, 1, 5, "180")
         editor(app).query_one("#joints-table").move_cursor(row=2)
         await press(pilot, "t")
-        await edit_cell(pilot, 2, 7, "200")
-        await edit_cell(pilot, 2, 6, "0")
+        await edit_cell(pilot, 2, JOINT_COLUMNS.index("max"), "200")
+        await edit_cell(pilot, 2, JOINT_COLUMNS.index("min"), "0")
         fields = editor(app).query_one("#fields-table")
         fields.focus()
         fields.move_cursor(row=3)
@@ -302,14 +313,22 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
         assert robot.type_string == "RRPR" and robot.base_height == 250
         assert editor(app).query_one("#preview").views[1].scene is not None
         await press(pilot, "ctrl+s")
-        await type_in(pilot, "../evil")
-        assert "slash" in error_text(app)
+        # a slash makes a path (test_save_library); refused: the home folder
+        # itself ("~" is not "<home's name>.toml" beside it), an unsafe name, none
+        await type_in(pilot, "~")
+        assert "the path ends in a folder" in error_text(app)
         await type_in(pilot, "..")
         assert "not a safe file name" in error_text(app)
         await type_in(pilot, "")
         assert "type a name" in error_text(app)
-        await type_in(pilot, "my_scara")
-        saved = in_tmp / "robots" / "my_scara.toml"
+        saved = user_library_dir() / "my_scara.toml"  # a bare name: the user library
+        await press(pilot, "ctrl+u", *"my_scara")
+        assert " ".join(str(app.screen.query_one("#hint").render()).split()) == (
+            f"saves to {saved}"
+        )  # the full path, before anything is written
+        assert not saved.exists()
+        await press(pilot, "enter")
+        await pilot.pause()
         assert load(saved) == robot
         assert not editor(app).dirty
         # reopen it, change one alpha, undo
@@ -326,6 +345,7 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp):
         assert isinstance(app.screen, ControlScreen)
         assert app.screen.robot == robot  # the simulator runs the saved robot
     assert load(saved) == robot
+    assert list(in_tmp.iterdir()) == []  # nothing written in the working folder
 
 
 async def test_open_a_bad_file_keeps_the_robot(in_tmp):
@@ -360,8 +380,8 @@ async def test_open_lists_robots_in_the_folder(in_tmp):
 
 
 async def test_saving_over_another_file_asks_first(in_tmp):
-    (in_tmp / "robots").mkdir()
-    other = in_tmp / "robots" / "other.toml"
+    user_library_dir().mkdir(parents=True)
+    other = user_library_dir() / "other.toml"  # where the bare name "other" saves
     other.write_text(dumps(load_robot("gantry")[0]))
     before = other.read_bytes()
     app = editor_app(new_robot("other", 2), None)
@@ -380,7 +400,9 @@ async def test_saving_over_another_file_asks_first(in_tmp):
 
 
 async def test_failed_save_loses_nothing(in_tmp):
-    (in_tmp / "robots").write_text("a file where the folder should be")
+    library = user_library_dir()
+    library.parent.mkdir(parents=True)
+    library.write_text("a file where the folder should be")
     app = editor_app(new_robot("keep me", 3), None)
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -390,7 +412,7 @@ async def test_failed_save_loses_nothing(in_tmp):
         await type_in(pilot, "keep_me")
         assert "not saved" in status(app)
         assert editor(app).robot == robot and editor(app).dirty
-    assert (in_tmp / "robots").read_text() == "a file where the folder should be"
+    assert library.read_text() == "a file where the folder should be"
 
 
 async def test_failed_save_to_a_read_only_file_keeps_the_old_file(in_tmp, monkeypatch):
@@ -453,6 +475,7 @@ async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp):
 async def test_bundled_robots_are_templates(name, in_tmp):
     """A bundled robot asks for a name on save, and offers its own file's name."""
     robot, path = load_robot(name)
+    before = path.read_bytes()
     app = editor_app(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -460,9 +483,10 @@ async def test_bundled_robots_are_templates(name, in_tmp):
         assert isinstance(app.screen, ValueEntry)
         assert app.screen.query_one("Input").value == name
         await press(pilot, "enter")
-        saved = in_tmp / "robots" / f"{name}.toml"
+        saved = user_library_dir() / f"{name}.toml"  # the user library, not the bundled file
         assert loads(saved.read_text()) == editor(app).robot
-        assert editor(app).path == Path("robots") / f"{name}.toml"
+        assert editor(app).path == saved
+    assert path.read_bytes() == before
 
 
 async def test_control_screen_e_opens_the_editor():

@@ -62,9 +62,10 @@ async def test_maximised_the_3d_view_is_filled_with_no_empty_band():
 
 
 async def test_turning_the_3d_view_holds_its_framing_while_the_arm_stays_in_it():
+    """Over the work area (fitted, it is fitted afresh as it turns)."""
     app = make_app()
     async with app.run_test(size=(120, 36)) as pilot:
-        await press(pilot, "4", "z")
+        await press(pilot, "0", "4", "z")
         await pilot.pause()
         iso = app.screen.query_one("#view-iso", ArmView)
         panel = app.screen.query_one(ViewsPanel)
@@ -113,10 +114,13 @@ async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves():
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
-        whole = front._framing
-        await press(pilot, "F")
+        fit = front._framing  # the views open fitted (issue 27)
+        await press(pilot, "F")  # F: the work area
         await pilot.pause()
-        fit = front._framing
+        whole = front._framing
+        await press(pilot, "F")  # F again: fitted
+        await pilot.pause()
+        assert front._framing == fit
         assert fit.per_dot < whole.per_dot / 2  # much closer
         assert "fit (F)" in str(front.border_subtitle)
         tall, wide, _, _ = spans(front.picture, ROLE_INDEX["link"])

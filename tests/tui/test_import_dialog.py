@@ -12,6 +12,7 @@ from textual.command import CommandList, CommandPalette
 from textual.widgets import OptionList
 
 from dhsim_tui.core import load, load_robot
+from dhsim_tui.core.files.library import user_library_dir
 from dhsim_tui.core.interop.export import export_text
 from dhsim_tui.core.interop.importer import import_file
 from dhsim_tui.core.model.errors import DhsimError, TipNeeded
@@ -108,7 +109,10 @@ async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
         assert await showing(pilot, ImportNotes)  # what the importer checked
         notes = " ".join(str(app.screen.query_one("Label").render()).split())
         assert "checked at home and 200 random joint values" in notes
-        assert "Not saved yet: ctrl+s saves it as robots/<name>.toml." in notes
+        library = user_library_dir()
+        assert f"Not saved yet: ctrl+s saves it as {library}/<name>.toml (or a path you give)." in (
+            notes
+        )
         await press(pilot, "enter")
         screen = editor(app)
         await until(pilot, lambda: app.screen is screen, "the editor")
@@ -118,15 +122,15 @@ async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
         assert "imported from planar_elbow.urdf" in str(
             screen.query_one("#joints-table").border_title
         )
-        await press(pilot, "ctrl+s")  # asks a name in robots/
+        await press(pilot, "ctrl+s")  # asks a name in the user library
         assert await showing(pilot, ValueEntry)
         assert app.screen.query_one("Input").value == "planar_elbow"
         await press(pilot, "enter")
         await until(pilot, lambda: not screen.dirty, "the save")
-        saved = in_tmp / "robots" / "planar_elbow.toml"
+        saved = library / "planar_elbow.toml"
         assert load(saved) == expected.robot
         assert saved.read_text().startswith("# Imported by dhsim from planar_elbow.urdf")
-        assert not screen.dirty and screen.path == Path("robots/planar_elbow.toml")
+        assert not screen.dirty and screen.path == saved
     assert not (URDFS / "planar_elbow.toml").exists()
 
 
@@ -266,7 +270,7 @@ async def test_importing_on_the_simulator_runs_the_robot_unsaved(in_tmp):
         assert await showing(pilot, SaveGuard)
         await press(pilot, "s")
         assert await showing(pilot, ValueEntry)
-        saved = in_tmp / "robots" / "spherical_wrist.toml"
+        saved = user_library_dir() / "spherical_wrist.toml"  # a bare name: the user library
         await press(pilot, "enter")
         await until(pilot, saved.exists, "the save")
     assert load(saved) == import_file(source).robot

@@ -12,6 +12,7 @@ from pilot_helpers import press, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.model.program import Program, Step
+from dhsim_tui.core.model.text import counted
 from dhsim_tui.core.motion.path_check import LIMIT, check_path
 from dhsim_tui.core.motion.trajectory import sample
 from dhsim_tui.tui.app import DhsimApp
@@ -80,7 +81,7 @@ async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it(monkeypatch):
         screen = await started(pilot)
         await press(pilot, "g", "space")
         await until(pilot, lambda: "playing edge" in status(app), "playback")
-        assert f"{len(problems)} problems" in status(app)
+        assert counted(len(problems), "problem") in status(app)
         assert screen._programs.playing
         await press(pilot, "space")  # pause
         assert "paused" in status(app) and not screen._programs.playing
@@ -171,11 +172,12 @@ async def test_L_makes_R_record_linear_moves_and_the_title_says_so():
         await press(pilot, "L", "left", "R")
         await pilot.pause()
         assert [s.move for s in app.robot.program("program1").steps] == ["joint", "linear", "joint"]
-        assert "recorded step 3 of program1: a joint move" in status(app)
-        # after the selected step, and said so: step 1 selected, the new one is step 2
-        await press(pilot, "g", "up", "up", "L", "R")
+        assert "recorded step 3 of 3 in program1: a joint move" in status(app)
+        # I in the panel: after the selected step, and said so: step 1 selected,
+        # the new one is step 2 (R appends, above)
+        await press(pilot, "g", "up", "up", "L", "I")
         await pilot.pause()
         steps = app.robot.program("program1").steps
         assert [s.move for s in steps] == ["joint", "linear", "linear", "joint"]
-        assert "recorded step 2 of program1: a linear move" in status(app)
+        assert "recorded step 2 of 4 in program1: a linear move" in status(app)
         assert screen.query_one(ProgramPanel).selected == 1

@@ -11,6 +11,7 @@ import pytest
 from pilot_helpers import press, until
 
 from dhsim_tui.core import load, load_robot
+from dhsim_tui.core.files.library import user_library_dir
 from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import FileChanged, SaveGuard
@@ -72,6 +73,7 @@ async def test_q_without_changes_quits_at_once():
 
 async def test_save_from_the_quit_question_asks_a_name_for_a_bundled_robot(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
+    bundled = load_robot("puma560")[1].read_bytes()
     app = bundled_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await save_pose(pilot)
@@ -81,9 +83,10 @@ async def test_save_from_the_quit_question_asks_a_name_for_a_bundled_robot(tmp_p
         await press(pilot, "ctrl+u", *"mypuma", "enter")
         await pilot.pause()
     assert app.return_code == 0
-    saved = load(tmp_path / "robots" / "mypuma.toml")
+    saved = load(user_library_dir() / "mypuma.toml")  # a bare name: the user library
     assert saved.pose("here") == POSE
     assert saved.joints == load_robot("puma560")[0].joints
+    assert load_robot("puma560")[1].read_bytes() == bundled  # the template is untouched
 
 
 async def test_cancelling_the_name_stays(tmp_path, monkeypatch):

@@ -119,8 +119,9 @@ def test_views_3d_maximised_and_orbited(snap_compare):
     assert snap_compare(APP, run_before=keys(*MOVE, "4", "z", "d", "w"), terminal_size=(120, 36))
 
 
-def test_views_fitted_to_the_arm(snap_compare):
-    assert snap_compare(APP, run_before=keys(*MOVE, "F"), terminal_size=(120, 36))
+def test_views_over_the_work_area(snap_compare):
+    """The views open fitted to the arm (the other snapshots); 0: the work area."""
+    assert snap_compare(APP, run_before=keys(*MOVE, "0"), terminal_size=(120, 36))
 
 
 def test_views_with_the_base_and_tool_frames_only(snap_compare):

@@ -153,9 +153,13 @@ async def test_the_views_panel_works_on_its_own_with_keys_and_the_mouse():
         views = app.query_one(ViewsPanel)
         views.show(build_wireframe(ROBOT, ROBOT.kinematics.frames(ROBOT.home)))
         await pilot.pause()
+        assert views.fit  # the views open fitted to the arm
         await press(pilot, "3", "z", "x", "plus", "F")
         await pilot.pause()
-        assert views.selected == 2 and views.maximised and views.frames != "all" and views.fit
+        assert views.selected == 2 and views.maximised and views.frames != "all"
+        assert not views.fit  # F: the work area
+        await press(pilot, "F")
+        assert views.fit  # F again: fitted
         await press(pilot, "z", "0")
         assert not views.maximised and not views.fit and views.zoom == 1.0
         azimuth = views.orbit.azimuth

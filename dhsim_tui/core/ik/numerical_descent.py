@@ -15,7 +15,6 @@ from dhsim_tui.core.ik.numerical_problem import (
     UNWEIGHTED,
     _Problem,
 )
-from dhsim_tui.core.ik.step_codegen import compile_descent
 
 #: the damping's bias (keeps steps finite at singularities); it fades with the
 #: squared error below it, so that the last digits converge at once even near
@@ -75,6 +74,8 @@ def _compiled(problem: _Problem) -> Callable:
         key = (problem.position_only, tuple(problem.weight.tolist()))
     run = setup.descents.get(key)
     if run is None or (key in setup.unfolded and setup.descent_calls >= FOLD_AFTER):
+        from dhsim_tui.core.ik.step_codegen import compile_descent  # at the first solve
+
         fold = setup.descent_calls >= FOLD_AFTER
         run = setup.descents[key] = compile_descent(problem.robot, **_plan(problem), fold=fold)
         if fold:

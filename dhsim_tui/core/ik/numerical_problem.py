@@ -19,7 +19,6 @@ from dhsim_tui.core.analysis.jacobian import (
 )
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.ik.rotation import rotation_error
-from dhsim_tui.core.ik.step_codegen import compile_to_user
 from dhsim_tui.core.model.robot import Robot
 
 #: position tolerance as a fraction of the reach, and orientation tolerance (rad)
@@ -63,6 +62,9 @@ class _Setup:
         self.descent_calls = 0
         #: the seeded table of starts (numerical_starts), built on first use
         self.table = None
+        # the generated code's module loads with the first problem, not at start
+        from dhsim_tui.core.ik.step_codegen import compile_to_user
+
         self.to_user_tuple = compile_to_user(
             robot.name, self.to_internal_list, self.lower, self.upper
         )

@@ -41,12 +41,22 @@ from typing import NamedTuple
 import numpy as np
 
 from dhsim_tui.core.analysis.jacobian import controllable_rows, task_rank
-from dhsim_tui.core.ik import analytic as ik_analytic
 from dhsim_tui.core.ik.judge import Judge
 from dhsim_tui.core.ik.numerical import solve
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.core.model.text import counted
+
+
+def _closed_forms():
+    """:mod:`dhsim_tui.core.ik.analytic`, imported at the first pose solved
+    rather than when this module loads: the closed forms (the geometry
+    detected from the D-H table, the wrist and planar families) are a dozen
+    modules that the simulator's first frame does not need (issue 27)."""
+    from dhsim_tui.core.ik import analytic
+
+    return analytic
+
 
 #: a closed-form solution further off than this (same units) is polished numerically
 POLISH_ABOVE = 1e-9
@@ -118,7 +128,7 @@ def all_solutions(
         raise DhsimError(
             f"ik: expected {robot.dof} start values for {robot.name!r}, got {len(first)}"
         )
-    geometry = None if position_only else ik_analytic.detect(robot)
+    geometry = None if position_only else _closed_forms().detect(robot)
     if geometry is not None:  # plain floats (math raises, numpy is not used)
         return _analytic(robot, geometry, target, first)
     with np.errstate(all="ignore"):
@@ -134,13 +144,13 @@ def nearest_closed_form(
     has no closed form). Every branch is solved (a few microseconds) but
     only the nearest is checked by forward kinematics, unless it needs the
     numerical polish of a near-singular pose: then every one is."""
-    geometry = ik_analytic.detect(robot)
+    geometry = _closed_forms().detect(robot)
     if geometry is None:
         return None
     target = np.asarray(target, dtype=float)
     start = tuple(start)
     judge = Judge(robot, target, False)
-    branches, _ = ik_analytic.solve(robot, geometry, target, start, judge.fits)
+    branches, _ = _closed_forms().solve(robot, geometry, target, start, judge.fits)
     best = None
     for q, config in branches:
         nearest = judge.nearest(q, start)
@@ -199,7 +209,7 @@ def _finish(judge: Judge, found: list, start, method: str, family: bool, note: s
 
 def _analytic(robot: Robot, geometry, target: np.ndarray, start) -> Solutions:
     judge = Judge(robot, target, False)
-    branches, outside = ik_analytic.solve(robot, geometry, target, start, judge.fits)
+    branches, outside = _closed_forms().solve(robot, geometry, target, start, judge.fits)
     found = []
     nearest_of, errors_of = judge.nearest, judge.errors
     polish_position = POLISH_ABOVE * judge.scale

@@ -50,6 +50,21 @@ MAX_STEPS = 1000
 MAX_PROGRAM_NAME = 1000
 
 
+#: decimals a step's numbers are shown with, at most (float noise dropped)
+SHOWN_DECIMALS = 6
+
+
+def shown_number(value: float) -> str:
+    """A step's number as a person writes it: at most :data:`SHOWN_DECIMALS`
+    decimals, no trailing zeros, never ``-0`` (``10.000000000000002`` is
+    ``10``, ``-0.0`` is ``0``, ``431.8`` stays)."""
+    rounded = round(float(value), SHOWN_DECIMALS) + 0.0  # + 0.0: -0.0 becomes 0.0
+    if not math.isfinite(rounded):
+        return str(rounded)
+    text = f"{rounded:.{SHOWN_DECIMALS}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
 @dataclass(frozen=True)
 class Step:
     """One step: ``move`` "joint", "linear" or "wait"; ``to`` a pose name or
@@ -68,14 +83,14 @@ class Step:
     def describe(self) -> str:
         """``joint to qr``, ``linear to [0, 45, ...] at 250``, ``wait 0.5 s``."""
         if self.is_wait:
-            return f"wait {self.seconds:g} s"
+            return f"wait {shown_number(self.seconds)} s"
         if isinstance(self.to, str):
             to = self.to
         else:
-            to = "[" + ", ".join(f"{v:g}" for v in self.to or ()) + "]"
+            to = "[" + ", ".join(shown_number(v) for v in self.to or ()) + "]"
         speed = ""
         if self.speed is not None:
-            speed = f" at {self.speed:g}" + ("%" if self.move == "joint" else "/s")
+            speed = f" at {shown_number(self.speed)}" + ("%" if self.move == "joint" else "/s")
         return f"{self.move} to {to}{speed}"
 
 
@@ -234,6 +249,34 @@ def toggled_step(program: Program, index: int) -> Program:
     step = steps[index]
     steps[index] = Step("linear" if step.move == "joint" else "joint", step.to)
     return Program(program.name, tuple(steps))
+
+
+def with_changed_step(program: Program, index: int, step: Step) -> Program:
+    """Step ``index`` replaced by ``step``."""
+    steps = list(program.steps)
+    if 0 <= index < len(steps):
+        steps[index] = step
+    return Program(program.name, tuple(steps))
+
+
+def renamed_program(programs: tuple[Program, ...], old: str, new: str) -> tuple[Program, ...]:
+    """``programs`` with program ``old`` called ``new``, in its place;
+    :class:`DhsimError` if ``new`` is taken or empty (other checks: the
+    robot's, when the programs are replaced)."""
+    if not new.strip():
+        raise DhsimError("a program needs a non-empty name")
+    if new != old and any(p.name == new for p in programs):
+        raise DhsimError(f"there is a program named {printable(shortened(new))!r} already")
+    return tuple(Program(new, p.steps) if p.name == old else p for p in programs)
+
+
+def new_program_name(programs: tuple[Program, ...]) -> str:
+    """``program1``, ``program2``...: the first not taken."""
+    names = {p.name for p in programs}
+    number = 1
+    while f"program{number}" in names:
+        number += 1
+    return f"program{number}"
 
 
 def with_program(programs: tuple[Program, ...], program: Program) -> tuple[Program, ...]:

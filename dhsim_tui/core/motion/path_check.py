@@ -7,9 +7,10 @@ sample and the joint or frame it concerns:
 
 - **limit**: a joint at or past one of its limits (within
   :data:`LIMIT_TOLERANCE`);
-- **speed**: a joint faster than its top speed (``vmax`` or the default,
-  whatever the move's percentage), by finite differences between
-  consecutive samples, beyond a relative :data:`SPEED_TOLERANCE`;
+- **speed**: a joint faster than its top speed (``vmax``, or the default
+  when the robot file gives none, and the detail says so; whatever the
+  move's percentage), by finite differences between consecutive samples,
+  beyond a relative :data:`SPEED_TOLERANCE`;
 - **reach**: a linear move whose tool leaves the reachable space (IK finds
   no solution from the sample before); the arm stops there;
 - **jump**: a linear move that can't go on without a joint jumping (another
@@ -21,6 +22,10 @@ sample and the joint or frame it concerns:
 - **floor**: a frame's origin (frames 0 to n, and the tool point when the
   tool is not frame n) below the floor, the views' floor: world z =
   -``base_height`` (a pedestal of that height under frame 0's origin).
+
+A problem's ``detail`` follows its kind (``dhsim run`` prints ``speed: Th1
+at 271.18 deg/s, ...``); its :attr:`Problem.message` stands alone (the
+simulator's status line). Both name the joint or frame once.
 
 Start and end poses outside the limits never get here: they are load errors
 (:func:`~dhsim_tui.core.model.program.check_programs`).
@@ -56,7 +61,8 @@ FLOOR_TOLERANCE = 1e-6
 class Problem:
     """One problem: its ``kind`` (one of :data:`KINDS`), the ``step`` (1-based)
     it is in, the first and last sample's times (s), what it concerns (a joint
-    label such as ``Th3``, ``frame 2``, ``tool``, ``arm``) and what happens."""
+    label such as ``Th3``, ``frame 2``, ``tool``, ``arm``) and what happens
+    (``detail``, read after the kind: it names the subject itself)."""
 
     kind: str
     step: int
@@ -64,6 +70,15 @@ class Problem:
     until: float
     subject: str
     detail: str
+
+    @property
+    def message(self) -> str:
+        """The problem in one line without its kind before it: ``Th1 at
+        271.18 deg/s, over its top speed 180 deg/s``, ``singular in a linear
+        move, manipulability 0.0012 (below 0.001)``; the subject named once."""
+        if self.kind == SINGULAR:  # the only detail that doesn't say what it is
+            return f"{self.kind} {self.detail}"
+        return self.detail
 
     def as_dict(self) -> dict:
         return {
@@ -173,10 +188,9 @@ def _speeds(trajectory: Trajectory) -> list[Problem]:
         for run in runs(over, trajectory.step):
             peak = float(speeds[run[0] - 1 : run[1]].max())
             unit = _unit(robot, index)
-            detail = (
-                f"{robot.labels[index]} at {_over(peak, top)} {unit}/s, over its top speed "
-                f"{fmt(top)} {unit}/s"
-            )
+            given = "its top speed" if joint.vmax is not None else "the default top speed"
+            detail = f"{robot.labels[index]} at {_over(peak, top)} {unit}/s, over {given} "
+            detail += f"{fmt(top)} {unit}/s" + ("" if joint.vmax is not None else " (no vmax)")
             out.append(_problem(trajectory, SPEED, run, robot.labels[index], detail))
     return out
 
@@ -198,9 +212,8 @@ def _singular(trajectory: Trajectory) -> list[Problem]:
     out = []
     for run in runs(linear & (mu < SINGULAR_THRESHOLD), trajectory.step):
         lowest = float(mu[run[0] : run[1] + 1].min())
-        detail = (
-            f"singular in a linear move: manipulability {lowest:.2g}, below {SINGULAR_THRESHOLD:g}"
-        )
+        # read after the kind: "singular: in a linear move, ..."; message: "singular in a ..."
+        detail = f"in a linear move, manipulability {lowest:.2g} (below {SINGULAR_THRESHOLD:g})"
         out.append(_problem(trajectory, SINGULAR, run, "arm", detail))
     return out
 

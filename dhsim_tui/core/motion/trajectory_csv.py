@@ -1,21 +1,25 @@
 """A trajectory as CSV, the exchange format (``dhsim run --csv``), and such a
 CSV read back as a program (``dhsim import --program``).
 
-The file starts with one comment line that names the robot, the program,
-the rate and every column's unit, then a header row, then one row per
-sample::
+The file starts with the header row, then one row per sample, and nothing
+else: ``pandas.read_csv`` and a spreadsheet take the first line as the
+column names::
 
-    # dhsim trajectory: robot "Puma 560", program "demo", 100 Hz; units: time s, ...
     time,step,move,q1,q2,q3,q4,q5,q6,x,y,z,o,a,t,mu
 
 ``time`` in seconds, ``step`` 1-based, ``move`` joint, linear or wait,
 ``q1``... in degrees (revolute) or the robot's unit (prismatic), ``x, y, z``
 the tool point in the world (robot's unit), ``o, a, t`` its orientation
 (degrees, the pose panel's OAT) and ``mu`` the manipulability
-(dimensionless). Numbers carry 12 significant digits.
+(dimensionless); :func:`column_units` gives them per column (``dhsim run
+--json`` prints them, ``dhsim run --help`` names them). Numbers carry 12
+significant digits. Files written before the header came first start with
+a ``#`` comment line naming the robot, the program, the rate and the units.
 
 Reading one back (:func:`program_from_csv`) needs the header row and a
-column ``q1``... per joint; a ``#`` line is a comment. With a ``step``
+column ``q1``... per joint; a ``#`` line is a comment, wherever it is, and
+the joint units a dhsim comment line names (``units: ... q1 deg``: the old
+files') must be the robot's. With a ``step``
 column, each run of rows of one step becomes one step: a wait (its
 ``move`` is wait) as long as the run lasts, else a joint move to the
 run's last row; without one, every row is a joint move to its joints
@@ -62,17 +66,17 @@ def columns(robot: Robot) -> list[str]:
     ]
 
 
-def units_line(trajectory: Trajectory) -> str:
-    """The comment line on top: what was run and every column's unit."""
-    robot = trajectory.robot
-    joints = ", ".join(
-        f"q{i} {joint.unit(robot.units)}" for i, joint in enumerate(robot.joints, start=1)
-    )
-    return (
-        f'# dhsim trajectory: robot "{printable(robot.name)}", program '
-        f'"{printable(trajectory.program.name)}", {trajectory.rate:g} Hz; units: time s, '
-        f"{joints}, x y z {robot.units}, o a t deg, mu dimensionless"
-    )
+def column_units(robot: Robot) -> dict[str, str | None]:
+    """Every column's unit (None: a count, a word or a pure number)."""
+    return {
+        "time": "s",
+        "step": None,
+        "move": None,
+        **{f"q{i}": joint.unit(robot.units) for i, joint in enumerate(robot.joints, start=1)},
+        **dict.fromkeys("xyz", robot.units),
+        **dict.fromkeys("oat", "deg"),
+        "mu": None,
+    }
 
 
 def _number(value: float) -> str:
@@ -89,7 +93,6 @@ def csv_pieces(trajectory: Trajectory) -> Iterator[str]:
     of :data:`ROWS_PER_PIECE` rows, so a long run is written as it is
     formatted instead of held whole."""
     out = io.StringIO()
-    out.write(units_line(trajectory) + "\n")
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(columns(trajectory.robot))
     mu = trajectory.mu
@@ -107,7 +110,7 @@ def csv_pieces(trajectory: Trajectory) -> Iterator[str]:
         yield out.getvalue()
         out.seek(0)
         out.truncate()
-    if out.tell():  # no samples: the two header lines alone
+    if out.tell():  # no samples: the header row alone
         yield out.getvalue()
 
 
@@ -157,10 +160,11 @@ def program_from_csv(robot: Robot, text: str, name: str, source: str = "<csv>") 
 
 
 def _check_units(robot: Robot, lines: list[str], where: str) -> None:
-    """A dhsim comment line's joint units must be the robot's."""
+    """A dhsim comment line's joint units must be the robot's (the comment
+    line an old file starts with, or one anywhere else)."""
     for line in lines:
         if not line.startswith("#"):
-            return
+            continue
         for number, unit in _UNIT.findall(line.partition("units:")[2]):
             index = int(number) - 1
             if 0 <= index < robot.dof:

@@ -26,9 +26,9 @@ from dhsim_tui.core.files.robotfile import (
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import Robot
 from dhsim_tui.tui.flows.recover import offer_recovery
-from dhsim_tui.tui.flows.save import is_bundled, reapply_edits, save_flow
+from dhsim_tui.tui.flows.save import is_bundled, library_file_hint, reapply_edits, save_flow
 from dhsim_tui.tui.screens.dialogs import SaveGuard
-from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
+from dhsim_tui.tui.screens.open_robot import ImportNotes, Opened, OpenRobot, header_text
 
 if TYPE_CHECKING:
     from dhsim_tui.tui.app import DhsimApp
@@ -141,7 +141,7 @@ def run_imported(app: DhsimApp, opened: Opened) -> None:
     app.imported_from = opened.source
     app.run_robot(opened.robot, None)
     app.push_screen(
-        ImportNotes(opened, f"the palette's Save (ctrl+p) saves it as {ROBOTS_DIR}/<name>.toml")
+        ImportNotes(opened, f"the palette's Save (ctrl+p) saves it as {library_file_hint()}")
     )
 
 

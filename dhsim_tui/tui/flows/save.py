@@ -2,8 +2,11 @@
 that changed on disk or may not be written, without asking.
 
 Used by the editor's ctrl+s and "save as", and by the simulator's ``P`` and
-quit guard. Call it from a ``@work`` worker (it asks questions with
-``push_screen_wait``).
+quit guard. A robot without a file of its own (new, imported, or bundled: a
+template) goes to the user library (``$XDG_DATA_HOME/dhsim/robots/``) under
+the name typed, or to the path typed; the dialog shows the full path before
+anything is written, and never writes over a bundled robot's file. Call it
+from a ``@work`` worker (it asks questions with ``push_screen_wait``).
 """
 
 from __future__ import annotations
@@ -15,9 +18,11 @@ from pathlib import Path
 from types import EllipsisType
 from typing import Literal
 
+from rich.text import Text
 from textual.app import App
+from textual.widgets import Input, Label
 
-from dhsim_tui.core.files.library import is_bundled_file
+from dhsim_tui.core.files.library import in_user_library, is_bundled_file, user_library_dir
 from dhsim_tui.core.files.robotfile import (
     FileChangedError,
     FileStamp,
@@ -30,6 +35,7 @@ from dhsim_tui.core.model import editing
 from dhsim_tui.core.model.errors import DhsimError, RobotFileError
 from dhsim_tui.core.model.merge import Side, merge
 from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.model.text import printable
 from dhsim_tui.terminal.charset import shown
 from dhsim_tui.tui.screens.dialogs import (
     Choice,
@@ -39,7 +45,6 @@ from dhsim_tui.tui.screens.dialogs import (
     reason_of,
     short_path,
 )
-from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR
 from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 #: how a flow tells the user something: (message, is_error)
@@ -232,32 +237,97 @@ def file_text(path: Path | None) -> str | None:
 def suggested_name(robot: Robot, path: Path | None, save_as: bool = False) -> str:
     """A file name to offer: the file's own (a bundled irb140 offers
     "irb140"), else one made from the robot's name; "save as" of a file
-    already in robots/ offers NAME_copy."""
+    already in the user library offers NAME_copy."""
     name = editing.slug(robot.name)
     if path is not None:
         with contextlib.suppress(DhsimError):
             name = editing.check_file_name(path.stem)
-        if save_as and _same_file(path, ROBOTS_DIR / f"{name}.toml"):
+        if save_as and in_user_library(path):
             name = f"{name}_copy"
     return name
+
+
+def save_target(text: str) -> Path:
+    """The file the save dialog's text names, as a full path: a bare name is
+    ``<user library>/<name>.toml``; text with a slash (or starting with
+    ``~``) is a path (``.toml`` added when missing). A bundled robot's file
+    is refused: a bundled robot is a template, and yours are never bundled.
+    :class:`DhsimError` saying what is wrong."""
+    typed = text.strip()
+    if "/" in typed or "\\" in typed or typed.startswith("~"):
+        path = Path(typed)
+        with contextlib.suppress(RuntimeError):  # "~someone" with no such user: as typed
+            path = path.expanduser()
+        home_only = "/" not in typed and "\\" not in typed and path != Path(typed)
+        if typed.endswith(("/", "\\")) or path.name in ("", ".", "..") or home_only:
+            # "~" (or "~user") alone is a home folder, never "<its name>.toml" beside it
+            raise DhsimError("file name: the path ends in a folder; add a file name")
+        path = path.with_name(f"{editing.check_file_name(path.name)}.toml")
+    else:
+        path = user_library_dir() / f"{editing.check_file_name(typed)}.toml"
+    with contextlib.suppress(OSError):  # the working folder was deleted: as typed
+        path = path.absolute()
+    if is_bundled_file(path):
+        raise DhsimError(
+            f"{printable(path.name)} is a robot dhsim ships; give another name "
+            "(a bare name goes in your robot library)"
+        )
+    return path
+
+
+def library_file_hint() -> str:
+    """``/home/me/.local/share/dhsim/robots/<name>.toml`` (or a path you give)."""
+    try:
+        return f"{user_library_dir()}/<name>.toml (or a path you give)"
+    except DhsimError:
+        return "a path you give"
+
+
+def _target_hint(text: str) -> str:
+    """Under the save dialog's input: the full path the text saves to."""
+    try:
+        return f"saves to {save_target(text)}"
+    except DhsimError:
+        try:
+            folder = user_library_dir()
+        except DhsimError:
+            return "type a path to a .toml file"
+        return f"a name (saved in {folder}/) or a path"
+
+
+class SaveTarget(ValueEntry):
+    """The save dialog: a name (the user library) or a path, the full path it
+    saves to shown under the input as it is typed, before anything is written.
+    Dismisses with that :class:`~pathlib.Path` (None when cancelled)."""
+
+    def __init__(self, value: str) -> None:
+        super().__init__("save as", value, _target_hint(value), save_target)
+
+    def on_input_changed(self, event: Input.Changed) -> None:
+        super().on_input_changed(event)
+        hint = shown(printable(_target_hint(event.value)), self.app)
+        self.query_one("#hint", Label).update(Text(hint))
+
+
+def _offered(app: App, robot: Robot, path: Path | None, save_as: bool) -> str:
+    """What the save dialog starts with: a name for the user library, or the
+    path ``dhsim new -o FILE`` gave for a new robot."""
+    target = getattr(app, "new_target", None)
+    if path is None and isinstance(target, Path):
+        return str(target)
+    return suggested_name(robot, path, save_as)
 
 
 async def _ask_target(
     app: App, robot: Robot, path: Path | None, save_as: bool
 ) -> tuple[Path, FileStamp | None] | None:
-    """Ask a file name; confirm replacing a different existing file. Returns
-    the target and what it must hold when written (None: must not exist)."""
-    name = await app.push_screen_wait(
-        ValueEntry(
-            "save as",
-            suggested_name(robot, path, save_as),
-            f"a file name; saved as {ROBOTS_DIR}/<name>.toml",
-            editing.check_file_name,
-        )
-    )
-    if name is None:
+    """Ask a file name or path; confirm replacing a different existing file.
+    Returns the target and what it must hold when written (None: must not exist)."""
+    target = await app.push_screen_wait(SaveTarget(_offered(app, robot, path, save_as)))
+    if target is None:
         return None
-    target = ROBOTS_DIR / f"{name}.toml"
+    if path is None and target == getattr(app, "new_target", None):
+        app.new_target = None  # type: ignore[attr-defined]  # offered once, then a name
     try:
         stamp = read_stamp(target)
     except RobotFileError:  # there is something, unreadable: the save will say why

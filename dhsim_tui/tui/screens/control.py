@@ -335,7 +335,8 @@ class ControlScreen(Screen):
             self.add_class("-program")  # shown first: a hidden panel takes no focus
             self._program_panel.focus()
             self.say(
-                "program: R records a step (L: linear ones), space plays, l joint/linear, delete"
+                "program: R records a step at the end, I inserts, D waits, enter edits, "
+                "space plays; ? lists all"
             )
             return
         if to == "cartesian":

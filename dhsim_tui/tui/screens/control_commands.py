@@ -44,7 +44,9 @@ def control_commands(app, screen: ControlScreen) -> Iterator[PaletteCommand]:
     )
     yield PaletteCommand("Edit the D-H table", "the table editor (e)", screen.action_edit)
     yield PaletteCommand(
-        "Go home", "every joint home: the D-H table's values (h)", screen.action_home
+        "Go home",
+        "every joint home: the D-H table's values less the offsets (h)",
+        screen.action_home,
     )
     for name in robot.pose_names:
         values = ", ".join(fmt(v) for v in robot.pose(name))

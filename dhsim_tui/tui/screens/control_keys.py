@@ -15,7 +15,7 @@ from dhsim_tui.terminal.charset import ascii_mode
 from dhsim_tui.tui.keys import Keys, forwarded, legend_rows
 from dhsim_tui.tui.widgets.view_keys import BINDINGS as VIEW_BINDINGS
 
-HOME = Keys("home", help="every joint home (the D-H table's values)")
+HOME = Keys("home", help="every joint home: the D-H table's values less the offsets")
 POSE = Keys("next pose", help="next named pose")
 READOUT = Keys("read-out", help="read-out: OAT → roll/pitch/yaw → 4×4 transform")
 CARTESIAN = Keys(
@@ -51,7 +51,7 @@ QUIT = Keys("quit", help="quit")
 
 CONTROL_BINDINGS = [
     Binding("h,home", "home", "Home", id="robot.home",
-            tooltip="Send every joint home (the D-H table's values)", group=HOME),
+            tooltip="Send every joint home: the D-H table's values less the offsets", group=HOME),
     Binding("p", "next_pose", "Pose", id="robot.pose", tooltip="Go to the next named pose",
             group=POSE),
     # not in the footer (no room at 80 columns): the pose panel's caption names it
@@ -147,9 +147,10 @@ def keys_legend(bindings: list[Binding], ascii: bool, rows: int, width: int = 42
             text.append(f"\n{keys:<10}{words}")
         return text
     left = [_cell(keys, words, HINT_COLUMN - 1) for keys, words in hints[::2]]
-    right = [_cell(keys, words, width - HINT_COLUMN) for keys, words in hints[1::2]]
+    column = max(HINT_COLUMN, *(len(cell) + 1 for cell in left))  # never run together
+    right = [_cell(keys, words, width - column) for keys, words in hints[1::2]]
     for one, other in zip(left, [*right, ""], strict=False):
-        text.append(f"\n{one:<{HINT_COLUMN}}{other}".rstrip())
+        text.append(f"\n{one:<{column}}{other}".rstrip())
     return text
 
 
@@ -181,5 +182,9 @@ HELP_NOTES = (
     "OAT (Unimation VAL): O = azimuth of the approach vector, A = its "
     "depression below horizontal, T = roll about it.\n"
     "μ (manipulability): how freely the tool can move, from 0 (singular: some "
-    "direction is lost) up; yellow below 0.02, red below 0.001."
+    "direction is lost) up; yellow below 0.02, red below 0.001.\n"
+    "Offsets: a joint's value q is theta - offset (d - offset for a prismatic "
+    "joint), so home is the table's theta less its offset. From the Robotics "
+    "Toolbox: copy d, a, alpha and offset, and set theta = offset (d = offset "
+    "for a prismatic joint): its q = 0 is home here too."
 )

@@ -26,15 +26,24 @@ from dhsim_tui.core.model.program import (
     Program,
     Step,
     moved_step,
+    new_program_name,
     toggled_step,
+    with_changed_step,
     with_program,
     with_step,
     without_step,
 )
 from dhsim_tui.core.model.robot import Robot
+from dhsim_tui.core.model.text import counted
 from dhsim_tui.core.motion.path_check import check_path
 from dhsim_tui.core.motion.playback import Playback
 from dhsim_tui.core.motion.trajectory import Sampling, Trajectory
+from dhsim_tui.tui.flows.program_steps import (
+    ask_program_name,
+    ask_speed,
+    ask_target,
+    ask_wait,
+)
 from dhsim_tui.tui.flows.values import shorten_path_in
 from dhsim_tui.tui.screens.program_plot import ProgramPlot
 from dhsim_tui.tui.widgets.joint_row import ascii_mode
@@ -80,7 +89,8 @@ class ProgramPlayer:
         self.panel = panel
         robot = host.robot
         self.name = robot.programs[0].name if robot.programs else "program1"
-        self._undo: list[tuple[Program, ...]] = []  # the programs before each change
+        # the programs, and the one shown, before each change
+        self._undo: list[tuple[tuple[Program, ...], str]] = []
         self.playback: Playback | None = None
         self._timer: Timer | None = None
         self._from = (0.0, 0.0)  # (monotonic time, time played) when play last began
@@ -117,20 +127,22 @@ class ProgramPlayer:
         return robot.program(self.name) if self.name in robot.program_names else None
 
     # -- changes ---------------------------------------------------------------------
-    def record(self) -> None:
-        """The current pose as a joint (or, after ``L``, a linear) move after
-        the selected step."""
+    def record(self, insert: bool = False) -> None:
+        """R: the current pose as a joint (or, after ``L``, a linear) move at
+        the end of the program; ``insert`` (I in the panel): after the
+        selected step."""
         program = self.program() or Program(self.name)
-        at = self.panel.selected if program.steps else None
+        at = self.panel.selected if insert and program.steps else None
         step = Step(self.record_move, tuple(round(v, 6) for v in self.host.q))
         other = "joint" if step.move == "linear" else "linear"
-        number = (at or 0) + 2 if program.steps else 1  # after the selected step
+        number = at + 2 if at is not None else len(program.steps) + 1
+        total = len(program.steps) + 1
         done = (
-            f"recorded step {number} of {program.name}: a {step.move} move"
+            f"recorded step {number} of {total} in {program.name}: a {step.move} move"
             f" (L: record {other} moves)"
         )
-        if self._set(with_step(program, step, at), done) and program.steps:
-            self.panel.selected = (at or 0) + 1
+        if self._set(with_step(program, step, at), done):
+            self.panel.selected = number - 1
 
     def toggle_record_move(self) -> None:
         """L: R records linear moves from now on, or joint moves again."""
@@ -139,15 +151,35 @@ class ProgramPlayer:
         self.host.say(f"R records {self.record_move} moves from now on")
 
     def change(self, change: str, index: int) -> None:
-        """The program panel's ``kind``, ``delete``, ``up``, ``down`` or ``undo``."""
+        """The program panel's ``kind``, ``delete``, ``up``, ``down``,
+        ``undo``, ``insert``, ``wait``, ``speed``, ``target``, ``rename``,
+        ``new`` or ``next_program``."""
         if change == "undo":
             if not self._undo:
                 self.host.say("nothing to undo in the program", error=True)
                 return
-            programs = self._undo.pop()
+            programs, self.name = self._undo.pop()
             self._keep(replace(self.host.robot, programs=programs), "undid the last change")
             return
+        if change == "insert":
+            self.record(insert=True)
+            return
+        if change == "new":
+            self._new_program()
+            return
+        if change == "next_program":
+            self._next_program()
+            return
         program = self.program()
+        if change == "wait":
+            self._ask(self._add_wait(program or Program(self.name), index))
+            return
+        if change == "rename":
+            if program is None:
+                self.host.say(f"{self.name} has no steps yet: R records one", error=True)
+                return
+            self._ask(self._rename(program))
+            return
         if program is None or not program.steps:
             self.host.say("the program has no steps: R records one", error=True)
             return
@@ -156,20 +188,93 @@ class ProgramPlayer:
             self._set(changed, f"step {index + 1}: a {changed.steps[index].move} move")
         elif change == "delete":
             self._set(without_step(program, index), f"step {index + 1} deleted")
+        elif change == "speed":
+            self._ask(self._change_step(program, index, "speed"))
+        elif change == "target":
+            self._ask(self._change_step(program, index, "target"))
         else:
             delta = -1 if change == "up" else 1
             if self._set(moved_step(program, index, delta), f"step {index + 1} moved"):
                 self.panel.selected = min(max(index + delta, 0), len(program.steps) - 1)
 
+    # -- the panel's questions (dialogs, in a worker) ---------------------------------
+    def _ask(self, flow) -> None:
+        self.pause()
+        self.host.run_worker(flow, group="modal", exclusive=True)
+
+    async def _add_wait(self, program: Program, index: int) -> None:
+        seconds = await ask_wait(self.host.app)
+        if seconds is None:
+            return
+        at = index if program.steps else None
+        number = (at + 2) if at is not None else 1
+        step = Step("wait", seconds=seconds)
+        if self._set(with_step(program, step, at), f"step {number}: {step.describe()}"):
+            self.panel.selected = number - 1
+
+    async def _change_step(self, program: Program, index: int, what: str) -> None:
+        app, robot = self.host.app, self.host.robot
+        if what == "speed" or program.steps[index].is_wait:  # a wait's number: its seconds
+            step = await ask_speed(app, robot, program.steps[index])
+        else:
+            step = await ask_target(app, robot, program, index)
+        if step is not None:
+            changed = with_changed_step(program, index, step)
+            self._set(changed, f"step {index + 1}: {step.describe()}")
+
+    async def _rename(self, program: Program) -> None:
+        robot = self.host.robot
+        programs = await ask_program_name(self.host.app, robot, program.name)
+        if programs is None:
+            return
+        new = next(p.name for p, old in zip(programs, robot.programs, strict=True) if p is not old)
+        self._set_programs(programs, f"program {program.name} is now {new}", name=new)
+
+    def _new_program(self) -> None:
+        name = new_program_name(self.host.robot.programs)
+        self._set_programs(
+            with_program(self.host.robot.programs, Program(name)),
+            f"new program {name}: R records its first step",
+            name=name,
+        )
+        self.panel.selected = 0
+
+    def _next_program(self) -> None:
+        names = self.host.robot.program_names
+        if not names or (len(names) == 1 and names[0] == self.name):
+            self.host.say("there is no other program: N starts a new one", error=True)
+            return
+        at = names.index(self.name) if self.name in names else -1
+        self.name = names[(at + 1) % len(names)]
+        self.pause()
+        self._stop_sampling()
+        had_path = self.playback is not None
+        self.playback = None
+        self.panel.selected = 0
+        self.panel.show(self.program())
+        self._show()
+        self.host.say(f"program {self.name} ({names.index(self.name) + 1} of {len(names)})")
+        if had_path:
+            self.host.refresh_views()
+
     def _set(self, program: Program, message: str) -> bool:
         """The robot with ``program`` (the core checks it), kept as poses are."""
+        return self._set_programs(with_program(self.host.robot.programs, program), message)
+
+    def _set_programs(
+        self, programs: tuple[Program, ...], message: str, name: str | None = None
+    ) -> bool:
+        """The robot with ``programs`` (checked by the core; undone by ctrl+z),
+        showing program ``name`` from now on when given."""
         robot = self.host.robot
         try:
-            changed = replace(robot, programs=with_program(robot.programs, program))
+            changed = replace(robot, programs=programs)
         except DhsimError as exc:
             self.host.say(str(exc), error=True)
             return False
-        self._undo.append(robot.programs)
+        self._undo.append((robot.programs, self.name))
+        if name is not None:
+            self.name = name
         self._keep(changed, message)
         return True
 
@@ -219,7 +324,7 @@ class ProgramPlayer:
         self.host.stop_moving()
         problems = self.playback.problems
         found = (
-            f"; {len(problems)} problems (n: the next)"
+            f"; {counted(len(problems), 'problem')} (n: the next)"
             if problems
             else "; the path check found no problem"
         )
@@ -331,7 +436,7 @@ class ProgramPlayer:
                 problems = playback.problems
                 if problems:
                     self.host.say(
-                        f"playing {self.name}: {len(problems)} problems (n: the next)",
+                        f"playing {self.name}: {counted(len(problems), 'problem')} (n: the next)",
                         error=True,
                     )
             if playback.trajectory.complete:
@@ -449,7 +554,7 @@ class ProgramPlayer:
             return
         self._jump()
         self.host.say(
-            f"step {problem.step} at {problem.time:.2f} s: {problem.subject} {problem.detail}",
+            f"step {problem.step} at {problem.time:.2f} s: {problem.message}",
             error=True,
         )
 

@@ -84,13 +84,23 @@ class Confirm(Dialog[bool]):
 
 
 class Choice(Dialog[str | None]):
-    """Pick one of ``choices`` with the arrows and ``enter``; ``escape`` cancels."""
+    """Pick one of ``choices`` with the arrows and ``enter``; ``escape`` cancels.
+
+    ``disabled`` values are listed (their text says why) but cannot be picked;
+    ``question``, when given, is shown above the choices."""
 
     BINDINGS = [Binding("escape", "cancel", "Cancel", id="choice.cancel", tooltip="Cancel")]
     DEFAULT_CSS = DIALOG_CSS.format(name="Choice")
 
     def __init__(
-        self, title: str, choices: list[tuple[str, str]], current: str | None = None, hint: str = ""
+        self,
+        title: str,
+        choices: list[tuple[str, str]],
+        current: str | None = None,
+        hint: str = "",
+        *,
+        disabled: tuple[str, ...] = (),
+        question: str = "",
     ) -> None:
         """``choices`` are (value, what the user reads)."""
         super().__init__()
@@ -98,12 +108,19 @@ class Choice(Dialog[str | None]):
         self._choices = choices
         self._current = current
         self._hint = hint
+        self._disabled = disabled
+        self._question = question
 
     def compose(self) -> ComposeResult:
         with Vertical() as box:
             box.border_title = escape(shown(printable(self._title)))
+            if self._question:
+                yield Label(Text(shown(printable(self._question))))
             options = OptionList(
-                *(Option(Text(shown(printable(text))), id=value) for value, text in self._choices)
+                *(
+                    Option(Text(shown(printable(text))), id=value, disabled=value in self._disabled)
+                    for value, text in self._choices
+                )
             )
             yield options
             hint = self._hint or "↑↓ choose · enter picks · escape cancels"
@@ -112,8 +129,10 @@ class Choice(Dialog[str | None]):
     def on_mount(self) -> None:
         options = self.query_one(OptionList)
         values = [value for value, _ in self._choices]
-        if self._current in values:
-            options.highlighted = values.index(self._current)
+        open_ = [value for value in values if value not in self._disabled]
+        current = self._current if self._current in open_ else (open_ or [None])[0]
+        if current is not None:
+            options.highlighted = values.index(current)
         options.focus()
 
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:

@@ -21,7 +21,7 @@ from rich.text import Text
 from textual import work
 from textual.app import ComposeResult
 from textual.await_complete import AwaitComplete
-from textual.containers import Container, Vertical
+from textual.containers import Horizontal, Vertical
 from textual.coordinate import Coordinate
 from textual.events import Resize
 from textual.markup import escape
@@ -115,6 +115,9 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         self._cursor_row: int | None = None
         #: the fields table's row (its key) for the cursor at the next redraw (a new pose)
         self.field_cursor: str | None = None
+        #: the joints' switches of type, to switch back with their own limits
+        #: (editor_joint_values.Retype)
+        self.retyped: list = []
 
     # -- state ------------------------------------------------------------------
     @property
@@ -127,15 +130,19 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
 
     # -- layout -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
-        with Container(id="editor-layout"):
-            with Vertical(id="editor-tables"):
-                # "#" stays in view when a wide table scrolls sideways
-                yield FittedTable(
-                    id="joints-table", cursor_type="cell", zebra_stripes=True, fixed_columns=1
-                )
-                yield FittedTable(id="fields-table", cursor_type="row", zebra_stripes=True)
-                yield Static("", id="editor-status")
-            yield ViewsPanel(self.renderer, id="preview")
+        # the joints across the top; under them the robot's fields and the
+        # status beside the preview, which gets half the width and the whole
+        # height left (its links drawn, not only its joints)
+        with Vertical(id="editor-layout"):
+            # "#" stays in view when a wide table scrolls sideways
+            yield FittedTable(
+                id="joints-table", cursor_type="cell", zebra_stripes=True, fixed_columns=1
+            )
+            with Horizontal(id="editor-lower"):
+                with Vertical(id="editor-side"):
+                    yield FittedTable(id="fields-table", cursor_type="row", zebra_stripes=True)
+                    yield Static("", id="editor-status")
+                yield ViewsPanel(self.renderer, id="preview")
         yield KeysFooter()
 
     def on_mount(self) -> None:
@@ -147,6 +154,8 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
                 self.stamp = read_stamp(self.path)
             except RobotFileError:
                 self.stamp = None  # unreadable now: the save will say why
+        # framed on the arm, so its links are drawn long enough to see
+        self._preview.fit = True
         self._ready = True
         self._apply_size(self.app.size.width, self.app.size.height)
         if self._first_edit is not None:
@@ -188,7 +197,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         robot = self.robot
         self._joints.show(joint_labels(robot), joint_rows(robot))
         self._joints.border_subtitle = shown(
-            "* D-H variable at home · joint value = * - offset", self.app
+            "* D-H variable at home · home joint value = * - offset", self.app
         )
         if self._cursor_row is not None:
             self._joints.move_cursor(row=min(self._cursor_row, robot.dof - 1))
@@ -289,9 +298,7 @@ class EditorScreen(Screen[tuple[Robot, Path | None] | None]):
         event.stop()
         column = JOINT_COLUMNS[event.coordinate.column]
         index = min(event.coordinate.row, self.robot.dof - 1)
-        if column == "type":
-            self.action_toggle_type()
-        elif column == "#":
+        if column == "#":
             self.say(
                 "# is the joint's number, not a value: ctrl+↑ ctrl+↓ move the joint, "
                 "a adds one, d deletes it; → goes to its values",

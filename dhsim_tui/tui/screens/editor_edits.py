@@ -18,13 +18,35 @@ from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.tui.flows.fields import ask_field, ask_joint_field, ask_new_pose_name
 from dhsim_tui.tui.screens.dialogs import Confirm
 from dhsim_tui.tui.screens.editor_changes import describe_change
+from dhsim_tui.tui.screens.editor_joint_values import (
+    choose_type,
+    edit_home,
+    edit_offset,
+    edit_variable,
+    switch_type,
+)
 
 if TYPE_CHECKING:
     from dhsim_tui.tui.screens.editor import EditorScreen
 
 
 async def edit_joint_value(screen: EditorScreen, index: int, name: str) -> None:
-    """Ask for joint ``index``'s ``name`` (a D-H column) and set it."""
+    """Ask for joint ``index``'s ``name`` (a column of the joints table) and
+    set it: its type from a list; its D-H variable, offset and home joint
+    value showing what home becomes (:mod:`editor_joint_values`)."""
+    joint = screen.robot.joints[index]
+    if name == "type":
+        await choose_type(screen, index)
+        return
+    if name == joint.variable:
+        await edit_variable(screen, index)
+        return
+    if name == "offset":
+        await edit_offset(screen, index)
+        return
+    if name == "home":
+        await edit_home(screen, index)
+        return
     answer = await ask_joint_field(screen.app, screen.robot, index, name)
     if answer is not None:
         screen.push_edit(*answer)
@@ -42,13 +64,9 @@ async def edit_robot_field(screen: EditorScreen, key: str) -> None:
 
 
 def toggle_type(screen: EditorScreen) -> None:
-    """The joint under the cursor becomes prismatic, or revolute."""
-    index = screen.joint_index()
-    after = "prismatic" if screen.robot.joints[index].is_revolute else "revolute"
-    screen.attempt(
-        lambda: editing.toggle_type(screen.robot, index),
-        f"joint {index + 1} is now {after}",
-    )
+    """The joint under the cursor becomes prismatic, or revolute (switched
+    back, with its own limits again: :mod:`editor_joint_values`)."""
+    switch_type(screen, screen.joint_index())
 
 
 async def add_here(screen: EditorScreen) -> None:

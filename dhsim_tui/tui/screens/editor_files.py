@@ -16,9 +16,9 @@ from typing import TYPE_CHECKING
 
 from dhsim_tui.core.model import editing
 from dhsim_tui.tui.flows.recover import offer_recovery
-from dhsim_tui.tui.flows.save import is_bundled, reapply_edits, save_flow
+from dhsim_tui.tui.flows.save import is_bundled, library_file_hint, reapply_edits, save_flow
 from dhsim_tui.tui.screens.dialogs import short_path
-from dhsim_tui.tui.screens.open_robot import ROBOTS_DIR, ImportNotes, Opened, OpenRobot, header_text
+from dhsim_tui.tui.screens.open_robot import ImportNotes, Opened, OpenRobot, header_text
 
 if TYPE_CHECKING:
     from dhsim_tui.tui.screens.editor import EditorScreen
@@ -87,4 +87,4 @@ def show_import(screen: EditorScreen, opened: Opened) -> None:
     screen.imported_from = opened.source
     screen.refresh_robot()
     screen.say(f"imported {short_path(opened.source, 40)}; not saved yet: ctrl+s saves it")
-    screen.app.push_screen(ImportNotes(opened, f"ctrl+s saves it as {ROBOTS_DIR}/<name>.toml"))
+    screen.app.push_screen(ImportNotes(opened, f"ctrl+s saves it as {library_file_hint()}"))

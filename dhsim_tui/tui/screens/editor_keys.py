@@ -103,8 +103,8 @@ EDITOR_BINDINGS = [
 
 EDITOR_HELP_ROWS = [
     ("arrows", "move in the table (a wide table scrolls sideways)"),
-    ("enter", "edit the cell or field under the cursor"),
-    ("t", "revolute <-> prismatic (the variable moves between theta and d)"),
+    ("enter", "edit the cell or field under the cursor (type: a choice of R or P)"),
+    ("t", "revolute <-> prismatic (switched back: its own limits again)"),
     ("a, insert", "add a joint after the cursor; in the fields table, a pose"),
     ("d, delete", "delete the joint or pose (asks first)"),
     ("ctrl+↑ ctrl+↓", "move the joint up or down"),
@@ -121,7 +121,13 @@ EDITOR_HELP_ROWS = [
 ]
 
 EDITOR_HELP_NOTES = (
-    "\nA joint's variable (theta for R, d for P, marked *) holds its home value "
-    "and must lie within min..max (degrees for R, the robot's unit for P). "
+    "\nA joint's variable (theta for R, d for P, marked *) is the D-H value at "
+    "home. The joint value q (what limits, poses and the simulator use) is "
+    "theta - offset, so the home column shows home = theta - offset, which "
+    "must lie within min..max (degrees for R, the robot's unit for P). "
+    "A new offset shows what home becomes and asks what stays: theta (the "
+    "arm's home pose) or the home joint value (theta follows the offset). "
+    "From the Robotics Toolbox: copy d, a, alpha and offset (angles in "
+    "degrees), and set theta = offset (d = offset for P): its q = 0 is home. "
     "A rejected value shows why and changes nothing."
 )

@@ -39,8 +39,10 @@ FIELD_LABELS = {
     "tool_xyz": "tool xyz",
     "tool_rpy": "tool rpy (deg)",
 }
-#: the joints table's columns (what editing calls them), in order
-JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "offset", "min", "max")
+#: the joints table's columns (what editing calls them), in order; ``home``
+#: is the home joint value, theta - offset (d - offset), shown beside the
+#: offset and the limits it must lie within
+JOINT_COLUMNS = ("#", "type", "theta", "d", "a", "alpha", "offset", "home", "min", "max")
 
 
 def number(value: float) -> str:
@@ -64,6 +66,7 @@ def joint_labels(robot: Robot) -> tuple[str, ...]:
         f"a\n({unit})",
         "alpha\n(deg)",
         f"offset\n({limits_unit(robot)})",
+        f"home\n({limits_unit(robot)})",
         f"min\n({limits_unit(robot)})",
         f"max\n({limits_unit(robot)})",
     )
@@ -87,7 +90,9 @@ def joint_rows(robot: Robot) -> list[tuple[str, tuple[Cell, ...]]]:
         theta = number(j.theta) + ("*" if j.is_revolute else "")
         d = number(j.d) + ("" if j.is_revolute else "*")
         cells = (str(i), "R" if j.is_revolute else "P", theta, d)
-        cells += (number(j.a), number(j.alpha), number(j.offset), number(j.min), number(j.max))
+        # home is derived (theta - offset): shown without the subtraction's float noise
+        cells += (number(j.a), number(j.alpha), number(j.offset), number(round(j.home, 9) + 0.0))
+        cells += (number(j.min), number(j.max))
         rows.append((f"joint:{i}", cells))
     return rows
 

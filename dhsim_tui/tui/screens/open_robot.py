@@ -1,8 +1,9 @@
-"""The open dialog: the robots in ``robots/`` (and the bundled ones), or a path.
+"""The open dialog: your robots (the user library), those in ``./robots/``
+and the bundled ones, or a path.
 
 A ``.toml`` file is a robot file; a ``.urdf`` or ``.csv`` file is imported
 (:func:`dhsim_tui.core.interop.importer.import_file`): the robot it gives has no
-robot file yet, so saving it asks for a name in ``robots/``. A URDF whose
+robot file yet, so saving it asks for a name (saved in the user library). A URDF whose
 links form a tree asks which leaf link is the tool.
 
 Nothing a folder or a typed path can do raises: an unreadable folder, a
@@ -27,7 +28,7 @@ from textual.widgets import Input, Label, OptionList
 from textual.widgets.option_list import Option
 
 from dhsim_tui.core.files.formats import IMPORT_SUFFIXES
-from dhsim_tui.core.files.library import bundled_dir, describe
+from dhsim_tui.core.files.library import bundled_dir, describe, user_library_dir
 from dhsim_tui.core.files.robotfile import FileStamp, load, load_with_stamp
 from dhsim_tui.core.model.errors import DhsimError, TipNeeded
 from dhsim_tui.core.model.robot import Robot
@@ -91,12 +92,14 @@ def _key(path: Path) -> Path:
 def robot_files(
     notes: list[str] | None = None, suffixes: tuple[str, ...] = ROBOT_SUFFIXES
 ) -> list[Path]:
-    """Files a user may want: ./robots/ first (robot files, and the imports
-    ``suffixes`` asks for), then the bundled robots (when ``suffixes`` has
-    ``.toml``). A folder that cannot be read is skipped, with a line in ``notes``."""
+    """Files a user may want: their robot library's robots first (when
+    ``suffixes`` has ``.toml``), then ./robots/ (robot files, and the imports
+    ``suffixes`` asks for), then the bundled robots. A folder that cannot be
+    read is skipped, with a line in ``notes``."""
     files: list[Path] = []
     seen: set[Path] = set()
-    folders = [ROBOTS_DIR] + ([bundled_dir()] if ".toml" in suffixes else [])
+    robots = ".toml" in suffixes
+    folders = ([_library()] if robots else []) + [ROBOTS_DIR] + ([bundled_dir()] if robots else [])
     for folder in folders:
         try:
             if not folder.is_dir():
@@ -111,6 +114,14 @@ def robot_files(
                 seen.add(_key(path))
                 files.append(path)
     return files
+
+
+def _library() -> Path:
+    """The user library (a folder that is not there when there is no home)."""
+    try:
+        return user_library_dir()
+    except DhsimError:
+        return ROBOTS_DIR
 
 
 def import_file(path: Path, tip: str | None = None):

@@ -47,8 +47,8 @@ class ProgramPlot(Dialog[None]):
         text = plot_text(
             self._trajectory,
             self._problems,
-            max(width - 4, 40),
-            max(height - 4, 16),
+            max(width - 2, 40),  # the box's inside
+            max(height - 2, 16),
             colour=not look.mono,
             ascii=look.ascii,
             cursor=self._cursor,

@@ -85,13 +85,25 @@ class ValueEntry(Dialog[Any]):
     ValueEntry Label { width: 100%; }
     ValueEntry #error { color: $error; }
     ValueEntry #hint { color: $text-muted; }
+    ValueEntry #live { color: $text; }
     """
 
-    def __init__(self, title: str, value: str, hint: str, check: Callable[[str], Any]) -> None:
+    def __init__(
+        self,
+        title: str,
+        value: str,
+        hint: str,
+        check: Callable[[str], Any],
+        live: Callable[[str], str] | None = None,
+    ) -> None:
+        """``live``, when given, turns the text as it is typed into a line
+        shown under the input (what the value would make of the robot: the
+        home joint value an offset gives); "" shows nothing."""
         super().__init__()
         self._title = title
         self._hint = hint
         self._check = check
+        self._live = live
         self._input = OrderedInput(value, id="value", select_on_focus=True)
         self.set_focus(self._input, scroll_visible=False)
 
@@ -103,6 +115,8 @@ class ValueEntry(Dialog[Any]):
             else:  # too long for the border: shown whole, wrapped, above the input
                 yield Label(Text(title), id="title")
             yield self._input
+            if self._live is not None:
+                yield Label(self._live_text(self._input.value), id="live")
             yield Label(Text(shown(printable(self._hint))), id="hint")
             yield Label("", id="error")
 
@@ -118,6 +132,16 @@ class ValueEntry(Dialog[Any]):
 
     def on_input_changed(self, event: Input.Changed) -> None:
         self.query_one("#error", Label).update("")
+        if self._live is not None:
+            self.query_one("#live", Label).update(self._live_text(event.value))
+
+    def _live_text(self, text: str) -> Text:
+        assert self._live is not None
+        try:
+            line = self._live(text)
+        except DhsimError:
+            line = ""  # not a value yet: enter says why
+        return Text(shown(printable(line)))
 
     def action_cancel(self) -> None:
         self.dismiss(None)

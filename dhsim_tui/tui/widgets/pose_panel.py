@@ -45,11 +45,27 @@ def _number(value: float, decimals: int = 2, width: int = 10) -> str:
     return f"{round(value, decimals) + 0.0:{width}.{decimals}f}"
 
 
-def pose_text(pose: EndEffector, readout: str, units: str, ascii: bool = False) -> Text:
+def pose_text(
+    pose: EndEffector, readout: str, units: str, ascii: bool = False, compact: bool = False
+) -> Text:
     """The read-out as text; pure so tests can compare it with ``dhsim fk``.
-    ``ascii``: "deg" for the degree sign, "x" for the multiplication sign."""
+    ``ascii``: "deg" for the degree sign, "x" for the multiplication sign.
+    ``compact``: XYZ on one line and the angles on the next (OAT and RPY;
+    for a short screen where the program panel shares the side)."""
     degree = "deg" if ascii else "°"
     text = Text()
+    if compact and readout in ("oat", "rpy"):
+        decimals = LENGTH_DECIMALS[units]
+        for i, (name, value) in enumerate(zip("XYZ", pose.xyz, strict=True)):
+            text.append(f"{name} " if i == 0 else f" {name} ", style="bold")
+            text.append(_number(value, decimals, 8))
+        text.append(f" {units}\n")
+        names = ("O", "A", "T") if readout == "oat" else ("R", "P", "Y")
+        angles = pose.oat if readout == "oat" else pose.rpy
+        for i, (name, value) in enumerate(zip(names, angles, strict=True)):
+            text.append(f"{name} " if i == 0 else f" {name} ", style="bold")
+            text.append(f"{_number(value, 2, 7)}{degree}")
+        return text
     if readout == ALL_READOUTS:
         text.append_text(pose_text(pose, "oat", units, ascii))
         angles = pose_text(pose, "rpy", units, ascii).split("\n", allow_blank=True)[3:]
@@ -103,6 +119,19 @@ class PosePanel(TextPanel):
     _titles: tuple[str, str] | None = None
     _branch = ""
     _grows = False
+    _last: tuple | None = None  # what it was last handed, to show again when resized
+    #: fewer lines than this inside: the compact read-out (two lines)
+    FULL_LINES = 8
+
+    @property
+    def compact(self) -> bool:
+        """Laid out shorter than the full read-out needs (a short screen with
+        the program panel): XYZ and the angles on a line each."""
+        return 0 < self.size.height < self.FULL_LINES  # (the size inside the border)
+
+    def on_resize(self) -> None:
+        if self._last is not None:
+            self.show(*self._last)
 
     def show(
         self,
@@ -116,6 +145,7 @@ class PosePanel(TextPanel):
         """``branch``: which of the arm's solutions for this tool pose it is in
         (``b``), shown under the rest (the panel grows to fit it), or "".
         Plain text, never markup."""
+        self._last = (pose, readout, units, dexterity, warnings, branch)
         ascii = ascii_mode(self)
         title = (READOUT_TITLES_ASCII if ascii else READOUT_TITLES)[readout]
         subtitle = "" if readout == ALL_READOUTS else READOUT_KEY
@@ -124,7 +154,7 @@ class PosePanel(TextPanel):
             self._titles = (title, subtitle)
             self.border_title = title
             self.border_subtitle = subtitle
-        text = pose_text(pose, readout, units, ascii)
+        text = pose_text(pose, readout, units, ascii, compact=self.compact)
         text.append("\n")
         text.append_text(health_text(dexterity, warnings, ascii))
         if branch:

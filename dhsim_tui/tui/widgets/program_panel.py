@@ -32,6 +32,13 @@ SEEK = Keys("step back/on", help="playback: to the start of the step before / af
 PLOT = Keys("plot", help="the joints and the tool speed against time, at the time played")
 SPEED = Keys("play speed", help="playback slower / faster: ×¼ ×½ ×1 ×2 ×4")
 PROBLEM = Keys("next problem", help="playback: to the next problem the path check found")
+INSERT = Keys("insert step", help="the current pose as a step after the selected one")
+WAIT = Keys("add wait", help="a wait after the selected step (asks the seconds)")
+STEP_SPEED = Keys("speed", help="the selected step's speed (a wait: its seconds)")
+TARGET = Keys("edit step", help="the selected step's target: joint values, or the tool pose")
+RENAME = Keys("rename", help="rename the program")
+NEW = Keys("new program", help="start a new, empty program")
+OTHER = Keys("other program", help="show the next of the robot's programs")
 
 BINDINGS = [
     Binding("up", "select(-1)", "Step", key_display="↑↓", id="program.prev",
@@ -48,6 +55,20 @@ BINDINGS = [
             tooltip="Move the selected step down", group=MOVE),
     Binding("ctrl+z", "change('undo')", "Undo", show=False, id="program.undo",
             tooltip="Undo the last change to the program", group=UNDO),
+    Binding("I", "change('insert')", "Insert", show=False, id="program.insert",
+            tooltip="Record the current pose after the selected step", group=INSERT),
+    Binding("D", "change('wait')", "Wait", show=False, id="program.wait",
+            tooltip="Add a wait (a delay) after the selected step", group=WAIT),
+    Binding("S", "change('speed')", "Speed", show=False, id="program.speed",
+            tooltip="Set the selected step's speed, or a wait's seconds", group=STEP_SPEED),
+    Binding("enter", "change('target')", "Edit", show=False, id="program.target",
+            tooltip="Edit the selected step's target numbers", group=TARGET),
+    Binding("r", "change('rename')", "Rename", show=False, id="program.rename",
+            tooltip="Rename the program", group=RENAME),
+    Binding("N", "change('new')", "New", show=False, id="program.new",
+            tooltip="Start a new program", group=NEW),
+    Binding("o", "change('next_program')", "Other", show=False, id="program.other",
+            tooltip="Show the robot's next program", group=OTHER),
     Binding("comma", "seek(-1)", "Back", show=False, id="program.back",
             tooltip="To the start of the step before", group=SEEK),
     Binding("full_stop", "seek(1)", "On", show=False, id="program.on",
@@ -65,6 +86,25 @@ BINDINGS = [
 
 #: a step's line is cut to this many columns (the side panel's width)
 LINE_WIDTH = 34
+#: the most steps shown at once (the rest scroll with the selection)
+VISIBLE_STEPS = 10
+
+
+def window(count: int, selected: int, top: int, visible: int) -> int:
+    """The first step shown (0-based) so that ``selected`` is among the
+    ``visible`` shown from ``top`` on, moving as little as it can."""
+    if count <= visible:
+        return 0
+    top = min(top, selected)
+    top = max(top, selected - visible + 1)
+    return min(max(top, 0), count - visible)
+
+
+def step_range(count: int, top: int, visible: int) -> str:
+    """``3–12 of 20``, or ``""`` when every step is shown."""
+    if count <= visible:
+        return ""
+    return f"{top + 1}–{min(top + visible, count)} of {count}"
 
 
 def program_text(
@@ -73,24 +113,30 @@ def program_text(
     playing_step: int | None,
     marks: dict[int, int],
     ascii: bool = False,
+    top: int = 0,
+    visible: int | None = None,
+    width: int = LINE_WIDTH,
 ) -> Text:
-    """One line per step, the selected one marked ``▶``, the one playing
-    ``•``; ``marks``: problems per step (1-based)."""
+    """One line per step shown (``visible`` from ``top`` on; all when None),
+    the selected one marked ``▶``, the one playing ``•``; ``marks``:
+    problems per step (1-based)."""
     text = Text()
     if program is None or not program.steps:
         text.append("no steps yet: R records the current pose", style="dim")
         return text
     pointer, playing = (">", "*") if ascii else ("▶", "•")
-    for index, step in enumerate(program.steps):
+    last = len(program.steps) if visible is None else top + visible
+    for index, step in enumerate(program.steps[top:last], start=top):
         number = index + 1
         marker = pointer if index == selected else " "
         now = playing if playing_step == number else " "
         line = f"{marker}{now}{number:>3} {step.describe()}"
-        if len(line) > LINE_WIDTH:
-            line = line[: LINE_WIDTH - 1] + ("~" if ascii else "…")
         problems = marks.get(number, 0)
+        room = width - (len(f"  !{problems}") if problems else 0)  # the mark always shows
+        if len(line) > room:
+            line = line[: room - 1] + ("~" if ascii else "…")
         style = "bold reverse" if index == selected else ""
-        if index:
+        if index > top:
             text.append("\n")
         text.append(line, style=style)
         if problems:
@@ -138,6 +184,14 @@ class ProgramPanel(TextPanel, can_focus=True):
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self._shown: tuple = (None, None, {})
+        self._top = 0  # the first step shown
+
+    @property
+    def visible(self) -> int:
+        """How many steps fit: the panel's inner height once laid out (its
+        max-height follows the screen's), at most :data:`VISIBLE_STEPS`."""
+        inner = self.size.height or VISIBLE_STEPS  # (the size inside the border)
+        return max(1, min(VISIBLE_STEPS, inner))
 
     def show(self, program: Program | None, playing_step: int | None = None, marks=None) -> None:
         """The program's steps, the one playing (1-based) and the problems per step."""
@@ -151,19 +205,34 @@ class ProgramPanel(TextPanel, can_focus=True):
     def _title(self) -> None:
         program = self._shown[0]
         name = f"Program {program.name}" if program is not None else "Program"
-        self.border_title = f"{name} · R {self.record_move}"
+        count = len(program.steps) if program is not None else 0
+        shown = step_range(count, self._top, self.visible)
+        self.border_title = f"{name} · {shown}" if shown else f"{name} · R {self.record_move}"
 
     def watch_record_move(self) -> None:
         self._title()
 
     def _render_now(self) -> None:
         program, playing_step, marks = self._shown
-        text = program_text(program, self.selected, playing_step, marks, ascii_mode(self))
+        count = len(program.steps) if program is not None else 0
+        follow = playing_step - 1 if playing_step else self.selected  # the step playing, or
+        top = window(count, follow, self._top, self.visible)  # the one selected, in sight
+        if top != self._top:
+            self._top = top
+            self._title()
+        width = max(LINE_WIDTH, self.size.width)  # (inside the border)
+        text = program_text(
+            program, self.selected, playing_step, marks, ascii_mode(self), top, self.visible, width
+        )
         refresh_changed_lines(self, self._text, text)
         self._text = text
 
     def watch_selected(self) -> None:
         self._render_now()
+
+    def on_resize(self) -> None:
+        self._render_now()
+        self._title()
 
     def action_select(self, delta: int) -> None:
         program = self._shown[0]
@@ -189,8 +258,9 @@ class ProgramPanel(TextPanel, can_focus=True):
         """A click on a step selects it."""
         program = self._shown[0]
         self.focus()
-        if program is not None and 0 <= event.y < len(program.steps):
-            self.selected = event.y
+        index = self._top + event.y
+        if program is not None and 0 <= event.y < self.visible and index < len(program.steps):
+            self.selected = index
 
     def _on_hide(self, event: events.Hide) -> None:
         """Hidden (a maximised view), it keeps the focus, as the jogging panels do."""

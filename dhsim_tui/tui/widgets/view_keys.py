@@ -1,5 +1,6 @@
 """The views panel's keys: select a view (``tab``, ``1``-``4``), maximise it
-(``z``), zoom (``+ - 0``), fit the arm (``F``), choose the frames drawn
+(``z``), zoom (``+ - 0``), the arm fitted or the work area (``F``; the
+views open fitted), choose the frames drawn
 (``x``) and orbit the 3-D view (``a d w s``). They call the panel's own
 ``action_*``; a screen hands them on (the panel takes no focus), see
 :func:`dhsim_tui.tui.keys.forwarded`."""

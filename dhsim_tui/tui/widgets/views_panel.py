@@ -4,15 +4,18 @@ Narrow terminals show the selected view; from 120×36 all four share a 2×2
 grid, and ``maximise`` gives the selected one the whole panel. The panel
 owns what the views show and how: which is selected, maximised, the zoom,
 the 3-D orbit, which frames' axes are drawn and whether the views are fitted
-to the arm (``F``). Its views post what the mouse does (a click selects, a
-double click maximises, the wheel zooms, a drag orbits the 3-D view) and the
-panel acts on it; what the screen must know comes back as messages.
+to the arm (as they open, and ``F``) or show the work area (``0``, ``F``).
+Its views post what the mouse does (a click selects, a double click
+maximises, the wheel zooms, a drag orbits the 3-D view) and the panel acts
+on it; what the screen must know comes back as messages.
 
-Framing: by default the three orthographic views share one scale (100 mm is
-as many columns in each) and show the seed's work area, and the 3-D view the
-floor and every point the arm can reach; ``zoom`` narrows them about the
-arm. Fitted (``F``), each view is framed on the arm as it stands, with a
-small margin, and keeps that framing while the arm moves inside it.
+Framing: the views open fitted, each framed on the arm as it stands (and on
+the program's path while one is drawn), with a small margin, and keep that
+framing while the arm moves inside it: a student sees the robot before
+pressing a key. The work area (``0``, or ``F`` again): the three
+orthographic views share one scale (100 mm is as many columns in each) and
+show the seed's work area, and the 3-D view the floor and every point the
+arm can reach. ``zoom`` narrows either about the arm.
 ``set_cloud`` lays a cloud of points (the workspace) faintly behind the arm
 in every view; it is projected once per cloud and orbit, and rasterised once
 per zoom and size, so a joint step costs what it did without it.
@@ -57,6 +60,15 @@ def is_wide(width: int, height: int) -> bool:
     return width >= WIDE_SIZE[0] and height >= WIDE_SIZE[1]
 
 
+def _path_key(wire: Wireframe) -> tuple | None:
+    """What tells one program's path drawn from another (the control screen
+    makes a new array of it for every frame): its length and ends."""
+    trail = wire.trail
+    if trail is None or len(trail) < 2:
+        return None
+    return (len(trail), *trail[0].tolist(), *trail[-1].tolist())
+
+
 class ViewsPanel(Container):
     """Top, front, side and 3-D views of the same wireframe."""
 
@@ -83,8 +95,9 @@ class ViewsPanel(Container):
     maximised: reactive[bool] = reactive(False, init=False)
     #: which frames' axes are drawn: FRAME_MODES
     frames: reactive[str] = reactive("all", init=False)
-    #: every view fitted to the arm (F), or the work area
-    fit: reactive[bool] = reactive(False, init=False)
+    #: every view fitted to the arm (as the views open; F toggles), or the
+    #: work area (0)
+    fit: reactive[bool] = reactive(True, init=False)
 
     def __init__(self, renderer: str = "plotext", *, id: str | None = None):
         super().__init__(id=id, classes="views-panel")
@@ -97,6 +110,7 @@ class ViewsPanel(Container):
         self._legend_key: tuple | None = None
         self._cloud: np.ndarray | None = None  # world points (n, 3), or none shown
         self._cloud_version = 0  # a new number for every set_cloud
+        self._path_key: tuple | None = None  # the program's path last shown
         self._view_clouds: dict[str, ViewCloud] = {}  # per view key, as projected
 
     def compose(self) -> ComposeResult:
@@ -182,6 +196,10 @@ class ViewsPanel(Container):
             self._wire.trail is None,
         ) != (wire.joint_types, wire.pedestal is None, wire.trail is None)
         self._wire = wire
+        path_key = _path_key(wire)
+        if path_key != self._path_key:  # a path drawn, gone or another: fit it afresh
+            self._path_key = path_key
+            self._kept.forget()
         scenes = [project(wire, view, self.frames) for view in ORTHO_VIEWS]
         scenes.append(project_oblique(wire, self.orbit, self.frames))
         framings = self._framings(scenes)
@@ -351,7 +369,8 @@ class ViewsPanel(Container):
             self._redraw()
 
     def toggle_fit(self) -> bool:
-        """F: every view fitted to the arm as it stands; again: the work area."""
+        """F: every view fitted to the arm as it stands (how they open);
+        again: the work area."""
         self.fit = not self.fit
         return self.fit
 
