@@ -16,7 +16,7 @@ import numpy as np
 from dhsim_tui.core.analysis.workspace import WorkArea
 from dhsim_tui.scene.oblique import Orbit, picture_coordinates
 from dhsim_tui.scene.projection import VIEWS, View
-from dhsim_tui.scene.raster import _BITS
+from dhsim_tui.scene.raster import BRAILLE_BITS
 
 #: the 3-D view's starting orbit
 ISOMETRIC = Orbit()
@@ -93,7 +93,7 @@ def braille_bits(dots: np.ndarray) -> np.ndarray:
     ny, nx = dots.shape
     rows, cols = ny // 4, nx // 2
     cells = dots[: 4 * rows, : 2 * cols].reshape(rows, 4, cols, 2).astype(np.int32)
-    return np.einsum("rycx,yx->rc", cells, _BITS)
+    return np.einsum("rycx,yx->rc", cells, BRAILLE_BITS)
 
 
 def thinned(dots: np.ndarray) -> np.ndarray:

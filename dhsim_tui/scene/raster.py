@@ -16,7 +16,7 @@ from dhsim_tui.scene.clip import clip_segments
 from dhsim_tui.scene.projection import Mark, ViewScene, equal_scale_limits
 
 #: bit of each dot in a braille cell, indexed [dot row][dot column]
-_BITS = np.array([[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]], dtype=np.int32)
+BRAILLE_BITS = np.array([[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]], dtype=np.int32)
 #: the role of the end-effector mark
 MARKER = "tool"
 MARKER_CHAR = "◆"
@@ -161,7 +161,7 @@ def rasterize(
     quads = np.zeros((ny // 2, nx), dtype=bool)
     quads[ys[mine & heavy], xs[mine & heavy]] = True
     # each cell's 4×2 dots weighted by their braille bits, its 2×2 quadrants by theirs
-    bits = np.einsum("rycx,yx->rc", dots.reshape(rows, 4, cols, 2).astype(np.int32), _BITS)
+    bits = np.einsum("rycx,yx->rc", dots.reshape(rows, 4, cols, 2).astype(np.int32), BRAILLE_BITS)
     quad = np.einsum("rycx,yx->rc", quads.reshape(rows, 2, cols, 2).astype(np.int32), _QUAD_BITS)
     colour_of_line = np.array([palette.index(line.role) for line in scene.lines] + [-1])
     colours = colour_of_line[top].reshape(rows, cols).astype(np.int16)

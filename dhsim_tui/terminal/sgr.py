@@ -4,7 +4,7 @@ Textual renders every segment of a line as its full SGR ("select graphic
 rendition") sequence, the text and a reset (``Strip.render``), so two
 neighbouring segments of the same colour are written as
 ``ESC[38;5;239;48;5;233m│ESC[0mESC[38;5;239;48;5;233m─ESC[0m``. Most of a
-frame's bytes are such codes (issue 9).
+frame's bytes are such codes (``bench/bytes.py`` counts them by kind).
 
 :func:`compact` keeps track of the attributes in force on the terminal and
 of the ones the data asks for, and writes an SGR sequence only when

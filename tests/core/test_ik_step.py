@@ -20,12 +20,12 @@ from dhsim_tui.core.ik.numerical_descent import (
     _compiled,
     _plan,
 )
-from dhsim_tui.core.ik.numerical_problem import ORIENTATION_TOL, POSITION_TOL, _Problem
+from dhsim_tui.core.ik.numerical_problem import ORIENTATION_TOL, POSITION_TOL, IkProblem
 from dhsim_tui.core.ik.rotation import rotation_error
 from dhsim_tui.core.ik.step_codegen import compile_descent
 
 
-def reference_step(problem: _Problem, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def reference_step(problem: IkProblem, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(error at x, the damped least-squares step from x), by numpy: the
     Jacobian from the frames, the rows solved for, weighted, and the normal
     equations solved by np.linalg.solve."""
@@ -42,7 +42,7 @@ def reference_step(problem: _Problem, x: np.ndarray) -> tuple[np.ndarray, np.nda
     return error, step
 
 
-def error_at(problem: _Problem, x: np.ndarray) -> np.ndarray:
+def error_at(problem: IkProblem, x: np.ndarray) -> np.ndarray:
     """The error at x (internal units, not clamped to the limits), by numpy."""
     pose = problem.robot.kinematics.pose(x / problem.to_internal)
     error = np.zeros(6)
@@ -52,7 +52,7 @@ def error_at(problem: _Problem, x: np.ndarray) -> np.ndarray:
     return error
 
 
-def one_step(problem: _Problem, x: np.ndarray, free: bool) -> tuple[np.ndarray, np.ndarray]:
+def one_step(problem: IkProblem, x: np.ndarray, free: bool) -> tuple[np.ndarray, np.ndarray]:
     """The compiled descent's first step from x: (x after it, error there)."""
     moved, error, iterations, _ = _compiled(problem)(
         x.tolist(), problem.goal, 1, DAMPING_BIAS, False, free
@@ -68,7 +68,7 @@ def random_problems(name: str, count: int, rng: np.random.Generator):
     robot, _ = load_robot(name)
     for k in range(count):
         target = robot.kinematics.pose(rng.uniform(robot.lower, robot.upper))
-        problem = _Problem(robot, target, position_only=k % 3 == 1)
+        problem = IkProblem(robot, target, position_only=k % 3 == 1)
         if k % 3 == 2 and problem.rows[3:].any():
             weight = POSITION_FIRST[k % len(POSITION_FIRST)]
             problem.weight = np.array([weight, weight, weight, 1.0, 1.0, 1.0])

@@ -60,10 +60,6 @@ def pose_panel(app) -> str:
     return str(app.screen.query_one(PosePanel).render())
 
 
-def status(app) -> str:
-    return str(app.screen.query_one("#status").render())
-
-
 # -- the core's helpers --------------------------------------------------------------
 def test_branch_index_finds_the_configuration_the_arm_is_in():
     robot, _ = load_robot("puma560")
@@ -93,7 +89,7 @@ def test_captions_say_n_of_n_the_only_one_or_one_of_a_family():
 
 
 # -- the screen ----------------------------------------------------------------------
-async def test_b_cycles_the_pumas_configurations_with_the_tool_fixed():
+async def test_b_cycles_the_pumas_configurations_with_the_tool_fixed(status):
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
@@ -184,7 +180,7 @@ async def test_b_moves_smoothly_when_motion_is_on_and_escape_stops_it(monkeypatc
         assert "branch" not in pose_panel(app)
 
 
-async def test_an_arm_with_one_solution_says_so():
+async def test_an_arm_with_one_solution_says_so(status):
     app = app_for("stanford", q=None)
     async with app.run_test(size=(80, 24)) as pilot:
         screen = await go_start(pilot)
@@ -228,7 +224,7 @@ def held_search(monkeypatch) -> threading.Event:
     return release
 
 
-async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch):
+async def test_keys_go_on_while_searching_and_every_b_counts(monkeypatch, status):
     release = held_search(monkeypatch)
     app = app_for()
     async with app.run_test(size=(80, 24)) as pilot:

@@ -345,20 +345,13 @@ async def test_a_real_control_screen_frame_compacts_to_the_same_screen():
 # -- the side panels: a few runs, repaint what changed --------------------------------
 
 
-def make_app(ascii: bool = False) -> DhsimApp:
-    robot, path = load_robot("puma560")
-    app = DhsimApp(robot, path, animate=False)
-    app.ascii_mode = ascii
-    return app
-
-
 def row_strip(row: JointRow) -> list[Segment]:
     return list(row.render_lines(Region(0, 0, row.size.width, 1))[0])
 
 
 @pytest.mark.parametrize("size", [(80, 24), (160, 48)])
-async def test_a_joint_row_is_a_few_styled_runs(size):
-    app = make_app()
+async def test_a_joint_row_is_a_few_styled_runs(size, control_app):
+    app = control_app()
     async with app.run_test(size=size) as pilot:
         rows = list(app.screen.query(JointRow))
         for row in rows:
@@ -387,8 +380,8 @@ def painted(screen) -> bool:
     return not (screen._dirty_widgets or screen._layout_required or screen._repaint_required)
 
 
-async def test_a_step_repaints_one_joint_row_and_the_changed_pose_lines():
-    app = make_app()
+async def test_a_step_repaints_one_joint_row_and_the_changed_pose_lines(control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await press(pilot, "down")  # Th2 (choosing repaints the joint panel's caption)
         screen = app.screen
@@ -425,17 +418,17 @@ async def test_a_step_repaints_one_joint_row_and_the_changed_pose_lines():
         )
 
 
-async def test_the_pose_panel_still_shows_every_change():
-    app = make_app()
+async def test_the_pose_panel_still_shows_every_change(screen_text, control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         panel = app.screen.query_one(PosePanel)
         before = str(panel.render())
         await press(pilot, "right")
         await until(pilot, lambda: str(panel.render()) != before, "the pose to change")
         after = str(panel.render())
-        screen_text = "\n".join(s.text for s in app.screen._compositor.render_strips())
+        shown = screen_text(app)
         for line in after.splitlines():
-            assert line.strip() in screen_text
+            assert line.strip() in shown
 
 
 # -- ASCII -------------------------------------------------------------------------
@@ -445,8 +438,9 @@ def is_ascii(text: str) -> bool:
     return all(ord(char) < 128 for char in text)
 
 
-async def test_ascii_mode_joint_rows_pose_and_cartesian_panels():
-    app = make_app(ascii=True)
+async def test_ascii_mode_joint_rows_pose_and_cartesian_panels(control_app):
+    app = control_app()
+    app.ascii_mode = True  # the mode alone: no ASCII borders or scroll bars
     async with app.run_test(size=(80, 24)) as pilot:
         await press(pilot, "right")
         rows = [str(row.render()) for row in app.screen.query(JointRow)]
@@ -477,8 +471,8 @@ def test_ascii_bar_limits_and_warnings():
     assert is_ascii(text) and "!" in text
 
 
-async def test_unicode_mode_keeps_its_glyphs():
-    app = make_app()
+async def test_unicode_mode_keeps_its_glyphs(control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         row = str(app.screen.query(JointRow)[0].render())

@@ -17,6 +17,7 @@ from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.editor_table import JOINT_COLUMNS
 from dhsim_tui.tui.screens.open_robot import OpenRobot
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor
 
 
 @pytest.fixture(autouse=True)
@@ -24,23 +25,6 @@ def in_tmp(tmp_path, monkeypatch):
     """Each test works in its own folder, so robots/ is a fresh one."""
     monkeypatch.chdir(tmp_path)
     return tmp_path
-
-
-def editor_app(robot=None, path=None) -> DhsimApp:
-    if robot is None:
-        robot, path = load_robot("puma560")
-    return DhsimApp(robot, path, start="edit")
-
-
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
-
-
-def status(app: DhsimApp) -> str:
-    return str(editor(app).query_one("#editor-status").render())
 
 
 def error_text(app: DhsimApp) -> str:
@@ -61,7 +45,7 @@ async def edit_cell(pilot, row: int, column: int, text: str) -> None:
     await type_in(pilot, text)
 
 
-async def test_edit_a_cell_and_undo_redo():
+async def test_edit_a_cell_and_undo_redo(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -100,7 +84,7 @@ async def test_edit_a_cell_and_undo_redo():
         ("max", "-170", "min (-160) must be less than max (-170)"),
     ],
 )
-async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tmp):
+async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tmp, editor_app):
     robot, _ = load_robot("puma560")
     file = in_tmp / "puma.toml"
     save(robot, file)
@@ -118,7 +102,7 @@ async def test_bad_values_are_rejected_where_typed(column, typed, message, in_tm
     assert file.read_bytes() == before
 
 
-async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same():
+async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same(status, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -139,7 +123,7 @@ async def test_an_offset_is_edited_in_its_column_and_keeps_home_drawn_the_same()
         assert str(table.get_cell_at((1, JOINT_COLUMNS.index("home")))) == "90"
 
 
-async def test_toggle_type_moves_the_variable():
+async def test_toggle_type_moves_the_variable(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -158,7 +142,7 @@ async def test_toggle_type_moves_the_variable():
         assert (joint.min, joint.max) == (-225.0, 45.0)  # its own limits, back
 
 
-async def test_add_delete_and_move_joints():
+async def test_add_delete_and_move_joints(status, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -189,7 +173,7 @@ async def test_add_delete_and_move_joints():
         assert "already at the end" in status(app)
 
 
-async def test_joint_count_stays_within_1_and_32():
+async def test_joint_count_stays_within_1_and_32(status, editor_app):
     one = new_robot("one", 1)
     app = editor_app(one, None)
     async with app.run_test(size=(80, 24)) as pilot:
@@ -203,7 +187,7 @@ async def test_joint_count_stays_within_1_and_32():
         assert "at most 32 joints" in status(app)
 
 
-async def test_robot_fields(in_tmp):
+async def test_robot_fields(in_tmp, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -265,7 +249,7 @@ async def test_robot_fields(in_tmp):
         assert editor(app).robot.tool.rpy == (0.0, 0.0, 90.0)
 
 
-async def test_poses_add_edit_delete():
+async def test_poses_add_edit_delete(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -348,7 +332,7 @@ async def test_new_robot_save_reopen_change_alpha_undo(in_tmp, monkeypatch):
     assert list(in_tmp.iterdir()) == []  # nothing written in the working folder
 
 
-async def test_open_a_bad_file_keeps_the_robot(in_tmp):
+async def test_open_a_bad_file_keeps_the_robot(in_tmp, editor_app):
     bad = in_tmp / "bad.toml"
     bad.write_text('name = "x"\n[[joints]]\nalhpa = 1\n')
     app = editor_app()
@@ -365,7 +349,7 @@ async def test_open_a_bad_file_keeps_the_robot(in_tmp):
         assert editor(app).robot == robot
 
 
-async def test_open_lists_robots_in_the_folder(in_tmp):
+async def test_open_lists_robots_in_the_folder(in_tmp, editor_app):
     (in_tmp / "robots").mkdir()
     gantry, _ = load_robot("gantry")
     save(gantry, in_tmp / "robots" / "a_gantry.toml")
@@ -379,7 +363,7 @@ async def test_open_lists_robots_in_the_folder(in_tmp):
         assert editor(app).path == Path("robots/a_gantry.toml")
 
 
-async def test_saving_over_another_file_asks_first(in_tmp):
+async def test_saving_over_another_file_asks_first(in_tmp, status, editor_app):
     user_library_dir().mkdir(parents=True)
     other = user_library_dir() / "other.toml"  # where the bare name "other" saves
     other.write_text(dumps(load_robot("gantry")[0]))
@@ -399,7 +383,7 @@ async def test_saving_over_another_file_asks_first(in_tmp):
         assert load(other) == editor(app).robot
 
 
-async def test_failed_save_loses_nothing(in_tmp):
+async def test_failed_save_loses_nothing(in_tmp, status, editor_app):
     library = user_library_dir()
     library.parent.mkdir(parents=True)
     library.write_text("a file where the folder should be")
@@ -415,7 +399,9 @@ async def test_failed_save_loses_nothing(in_tmp):
     assert library.read_text() == "a file where the folder should be"
 
 
-async def test_failed_save_to_a_read_only_file_keeps_the_old_file(in_tmp, monkeypatch):
+async def test_failed_save_to_a_read_only_file_keeps_the_old_file(
+    in_tmp, monkeypatch, status, editor_app
+):
     file = in_tmp / "arm.toml"
     robot = new_robot("arm", 2)
     save(robot, file)
@@ -438,7 +424,7 @@ async def test_failed_save_to_a_read_only_file_keeps_the_old_file(in_tmp, monkey
 
 
 @pytest.mark.parametrize("key", ["escape", "ctrl+q"])
-async def test_unsaved_changes_guard(key, in_tmp):
+async def test_unsaved_changes_guard(key, in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     robot = new_robot("arm", 2)
     save(robot, file)
@@ -457,7 +443,7 @@ async def test_unsaved_changes_guard(key, in_tmp):
     assert load(file) == robot
 
 
-async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp):
+async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     save(new_robot("arm", 2), file)
     app = editor_app(load(file), file)
@@ -472,7 +458,7 @@ async def test_guard_save_then_leave_runs_the_edited_robot(in_tmp):
 
 
 @pytest.mark.parametrize("name", ["puma560", "irb140"])
-async def test_bundled_robots_are_templates(name, in_tmp):
+async def test_bundled_robots_are_templates(name, in_tmp, editor_app):
     """A bundled robot asks for a name on save, and offers its own file's name."""
     robot, path = load_robot(name)
     before = path.read_bytes()
@@ -499,7 +485,7 @@ async def test_control_screen_e_opens_the_editor():
         assert isinstance(app.screen, ControlScreen)
 
 
-async def test_editor_at_160x48_shows_three_views():
+async def test_editor_at_160x48_shows_three_views(editor_app):
     app = editor_app()
     async with app.run_test(size=(160, 48)) as pilot:
         await started(pilot)

@@ -4,7 +4,7 @@ a file name, a question before replacing a file, and where it went."""
 from __future__ import annotations
 
 import pytest
-from pilot_helpers import press, showing, until
+from pilot_helpers import press, showing, started, until
 from textual.command import CommandList, CommandPalette
 
 from dhsim_tui.core import load_robot
@@ -16,31 +16,14 @@ from dhsim_tui.tui.screens.dialogs import Choice, Confirm
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.editor_keys import EDITOR_BINDINGS, EDITOR_HELP_ROWS
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor, status_of
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
 
-def editor_app() -> DhsimApp:
-    robot, path = load_robot("puma560")
-    return DhsimApp(robot, path, start="edit", animate=False)
-
-
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
-
-
-async def editor_up(pilot) -> EditorScreen:
-    """The editor the app opens at start, once it is ready for keys."""
-    app = pilot.app
-    await until(pilot, lambda: isinstance(app.screen, EditorScreen) and app.screen._ready)
-    return app.screen
-
-
 def status(app: DhsimApp) -> str:
-    return " ".join(str(editor(app).query_one("#editor-status").render()).split())
+    """The editor's message, its wrapped lines joined with single spaces."""
+    return " ".join(status_of(app).split())
 
 
 async def choose_format(pilot, fmt: str) -> None:
@@ -53,10 +36,10 @@ async def choose_format(pilot, fmt: str) -> None:
 
 
 @pytest.mark.parametrize("fmt", EXPORT_FORMATS)
-async def test_x_exports_what_export_text_gives(in_tmp, fmt):
+async def test_x_exports_what_export_text_gives(in_tmp, fmt, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "t")  # an unsaved edit: exported as it is here
         await until(pilot, lambda: editor(app).dirty, "the edit")
         robot = editor(app).robot
@@ -72,13 +55,14 @@ async def test_x_exports_what_export_text_gives(in_tmp, fmt):
         assert editor(app).dirty  # exporting is not saving
 
 
-async def test_an_existing_file_is_replaced_only_when_confirmed(in_tmp):
+async def test_an_existing_file_is_replaced_only_when_confirmed(in_tmp, editor_app):
     (in_tmp / "robots").mkdir()
     target = in_tmp / "robots" / "mine.csv"
     target.write_text("keep me\n")
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        robot = (await editor_up(pilot)).robot
+        await started(pilot)
+        robot = editor(pilot.app).robot
         await choose_format(pilot, "csv")
         await press(pilot, "ctrl+u", *"robots/mine", "enter")  # .csv is added
         assert await showing(pilot, Confirm)
@@ -94,10 +78,10 @@ async def test_an_existing_file_is_replaced_only_when_confirmed(in_tmp):
         assert target.read_text() == export_text(robot, "csv")
 
 
-async def test_a_wrong_suffix_or_a_failure_is_said_and_writes_nothing(in_tmp):
+async def test_a_wrong_suffix_or_a_failure_is_said_and_writes_nothing(in_tmp, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await choose_format(pilot, "urdf")
         await press(pilot, "ctrl+u", *"robots/arm.csv", "enter")
         await until(pilot, lambda: str(app.screen.query_one("#error").render()), "the error")

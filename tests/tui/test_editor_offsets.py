@@ -27,6 +27,7 @@ from dhsim_tui.tui.screens.editor_joint_values import (
 from dhsim_tui.tui.screens.editor_keys import EDITOR_HELP_NOTES
 from dhsim_tui.tui.screens.editor_table import JOINT_COLUMNS, joint_rows
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor
 
 HOME = JOINT_COLUMNS.index("home")
 OFFSET = JOINT_COLUMNS.index("offset")
@@ -42,25 +43,6 @@ def in_tmp(tmp_path, monkeypatch):
 
 def puma():
     return load_robot("puma560")[0]
-
-
-def editor_app(robot=None) -> DhsimApp:
-    if robot is None:
-        robot, path = load_robot("puma560")
-    else:
-        path = None
-    return DhsimApp(robot, path, start="edit", animate=False)
-
-
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
-
-
-def status(app: DhsimApp) -> str:
-    return str(editor(app).query_one("#editor-status").render())
 
 
 def cell(app: DhsimApp, row: int, column: int) -> str:
@@ -105,7 +87,7 @@ def test_the_home_column_is_theta_less_offset_beside_offset_and_the_limits():
     assert dict(joint_rows(noisy))["joint:3"][HOME] == "-0.2"
 
 
-async def test_home_follows_theta_live_and_its_entry_shows_it_as_typed():
+async def test_home_follows_theta_live_and_its_entry_shows_it_as_typed(status, editor_app):
     app = editor_app(set_joint_field(puma(), 1, "offset", -90.0))
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -121,7 +103,7 @@ async def test_home_follows_theta_live_and_its_entry_shows_it_as_typed():
         assert "joint 2 theta = -90 deg: home Th2 = 0 deg" in status(app)
 
 
-async def test_enter_on_home_sets_theta_to_home_plus_offset():
+async def test_enter_on_home_sets_theta_to_home_plus_offset(status, editor_app):
     app = editor_app(set_joint_field(puma(), 1, "offset", -90.0))
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -140,7 +122,7 @@ async def test_enter_on_home_sets_theta_to_home_plus_offset():
 # -- a new offset: what home becomes, and keeping it ---------------------------------------
 
 
-async def test_the_offset_entry_shows_what_home_becomes_as_it_is_typed():
+async def test_the_offset_entry_shows_what_home_becomes_as_it_is_typed(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -159,7 +141,9 @@ async def test_the_offset_entry_shows_what_home_becomes_as_it_is_typed():
         assert editor(app).robot == puma()
 
 
-async def test_the_toolbox_row_keeping_the_home_joint_value_puts_theta_at_the_offset():
+async def test_the_toolbox_row_keeping_the_home_joint_value_puts_theta_at_the_offset(
+    status, editor_app
+):
     """The trap: the Toolbox's row (theta 0, offset -90). Keeping the home
     joint value gives theta = -90, home q = 0, as the Toolbox reads it."""
     app = editor_app()
@@ -185,7 +169,7 @@ async def test_the_toolbox_row_keeping_the_home_joint_value_puts_theta_at_the_of
         assert editor(app).robot == before  # one edit
 
 
-async def test_an_offset_that_would_put_home_outside_the_limits_offers_only_keeping_it():
+async def test_an_offset_that_would_put_home_outside_the_limits_offers_only_keeping_it(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -203,7 +187,7 @@ async def test_an_offset_that_would_put_home_outside_the_limits_offers_only_keep
         assert (joint.theta, joint.offset, joint.home) == (200.0, 200.0, 0.0)
 
 
-async def test_escape_on_the_choice_or_the_same_offset_changes_nothing():
+async def test_escape_on_the_choice_or_the_same_offset_changes_nothing(status, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -233,7 +217,7 @@ def test_offset_choices_for_a_prismatic_joint_speak_of_d_in_its_unit():
 # -- the type ------------------------------------------------------------------------
 
 
-async def test_enter_on_the_type_cell_offers_revolute_or_prismatic():
+async def test_enter_on_the_type_cell_offers_revolute_or_prismatic(status, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -253,7 +237,7 @@ async def test_enter_on_the_type_cell_offers_revolute_or_prismatic():
         assert cell(app, 2, TYPE) == "P"
 
 
-async def test_switching_a_joint_and_back_restores_its_limits_offset_and_speeds():
+async def test_switching_a_joint_and_back_restores_its_limits_offset_and_speeds(status, editor_app):
     robot = puma()
     joint = replace(robot.joints[2], offset=10.0, theta=10.0, vmax=50.0, amax=100.0)
     robot = replace(robot, joints=(*robot.joints[:2], joint, *robot.joints[3:]))
@@ -269,7 +253,7 @@ async def test_switching_a_joint_and_back_restores_its_limits_offset_and_speeds(
         assert "joint 3 is now revolute again, its own limits -225..45 deg back" in status(app)
 
 
-async def test_switched_back_after_other_edits_the_joint_gets_its_limits_back():
+async def test_switched_back_after_other_edits_the_joint_gets_its_limits_back(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -323,7 +307,7 @@ def test_the_simulator_help_gives_the_toolbox_mapping_too():
 
 
 @pytest.mark.parametrize("size", [(80, 24), (120, 36)])
-async def test_the_preview_has_room_to_draw_the_links(size):
+async def test_the_preview_has_room_to_draw_the_links(size, editor_app):
     """Under the joints, beside the fields, framed on the arm: its links are
     drawn, not only its joints' glyphs (at 80x24 it was 18 columns wide)."""
     app = editor_app()
@@ -343,7 +327,7 @@ async def test_the_preview_has_room_to_draw_the_links(size):
         assert links >= 8 and links > joint_cells
 
 
-async def test_the_offset_questions_are_ascii_in_ascii_mode():
+async def test_the_offset_questions_are_ascii_in_ascii_mode(screen_text):
     robot, path = load_robot("puma560")
     app = DhsimApp(robot, path, animate=False, ascii=True, start="edit")
     async with app.run_test(size=(80, 24)) as pilot:
@@ -357,7 +341,7 @@ async def test_the_offset_questions_are_ascii_in_ascii_mode():
         assert await showing(pilot, Choice)
         await until(pilot, lambda: settled(app), "the choice drawn")
         assert non_ascii_outside_views(app) == []
-        lines = [strip.text for strip in app.screen._compositor.render_strips()]
+        lines = screen_text(app).split("\n")
         assert any("joint 2 offset 0 -> -90 deg" in line for line in lines)
         assert any("keep home Th2 0 deg" in line for line in lines)  # both shown whole
         await press(pilot, "escape")

@@ -16,14 +16,8 @@ from dhsim_tui.scene.framing import fitted
 from dhsim_tui.scene.oblique import Orbit, project_oblique
 from dhsim_tui.scene.projection import VIEWS, limits_at
 from dhsim_tui.scene.raster import rasterize
-from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.widgets.arm_view import ArmView
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
-
-
-def make_app(name: str = "puma560") -> DhsimApp:
-    robot, path = load_robot(name)
-    return DhsimApp(robot, path, animate=False)
 
 
 def spans(picture, role: int | None = None) -> tuple[float, float, int, int]:
@@ -47,10 +41,10 @@ def spans(picture, role: int | None = None) -> tuple[float, float, int, int]:
 # -- the 3-D view ---------------------------------------------------------------------
 
 
-async def test_maximised_the_3d_view_is_filled_with_no_empty_band():
+async def test_maximised_the_3d_view_is_filled_with_no_empty_band(control_app):
     """At 120x36, home: the drawing spans 80% of the height or width, from
     near the top to near the bottom (it used 16 of 32 rows, the top 14 empty)."""
-    app = make_app()
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await press(pilot, "4", "z")
         await pilot.pause()
@@ -61,9 +55,9 @@ async def test_maximised_the_3d_view_is_filled_with_no_empty_band():
         assert first <= 0.1 * rows and last >= 0.9 * rows - 1
 
 
-async def test_turning_the_3d_view_holds_its_framing_while_the_arm_stays_in_it():
+async def test_turning_the_3d_view_holds_its_framing_while_the_arm_stays_in_it(control_app):
     """Over the work area (fitted, it is fitted afresh as it turns)."""
-    app = make_app()
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await press(pilot, "0", "4", "z")
         await pilot.pause()
@@ -109,8 +103,8 @@ def test_f_fits_the_links_to_at_least_60_percent_of_every_view(name, rng):
             assert max(tall, wide) >= 0.6, (name, view.key, tall, wide)
 
 
-async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves():
-    app = make_app()
+async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves(control_app):
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
@@ -148,8 +142,8 @@ async def test_f_fits_holds_while_jogging_and_refits_when_the_arm_leaves():
 
 
 @pytest.mark.parametrize("size", [(160, 48), (200, 60)])
-async def test_a_big_terminal_shows_every_read_out_and_no_block_of_empty_rows(size):
-    app = make_app()
+async def test_a_big_terminal_shows_every_read_out_and_no_block_of_empty_rows(size, control_app):
+    app = control_app()
     async with app.run_test(size=size) as pilot:
         await started(pilot)
         side = app.screen.query_one("#side-panel")

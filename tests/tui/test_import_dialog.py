@@ -7,7 +7,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from pilot_helpers import press, showing, until
+from pilot_helpers import press, showing, started, until
 from textual.command import CommandList, CommandPalette
 from textual.widgets import OptionList
 
@@ -22,6 +22,7 @@ from dhsim_tui.tui.screens.dialogs import Choice, SaveGuard
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.open_robot import ImportNotes, OpenRobot
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
@@ -51,18 +52,6 @@ TREE = """<?xml version="1.0"?>
 """
 
 
-def editor_app() -> DhsimApp:
-    robot, path = load_robot("puma560")
-    return DhsimApp(robot, path, start="edit", animate=False)
-
-
-async def editor_up(pilot) -> EditorScreen:
-    """The editor the app opens at start, once it is ready for keys."""
-    app = pilot.app
-    await until(pilot, lambda: isinstance(app.screen, EditorScreen) and app.screen._ready)
-    return app.screen
-
-
 async def run_palette(pilot, query: str, first: str) -> None:
     """ctrl+p, ``query``, and enter once the first command listed is ``first``."""
     app = pilot.app
@@ -79,13 +68,6 @@ async def run_palette(pilot, query: str, first: str) -> None:
     await until(pilot, lambda: not CommandPalette.is_open(app), "the palette to close")
 
 
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
-
-
 def error_text(app: DhsimApp) -> str:
     return str(app.screen.query_one("#error").render())
 
@@ -98,12 +80,12 @@ async def type_path(pilot, path: object) -> None:
     await pilot.pause()
 
 
-async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
+async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp, editor_app):
     source = URDFS / "planar_elbow.urdf"
     expected = import_file(source)
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "ctrl+o")
         await type_path(pilot, source)
         assert await showing(pilot, ImportNotes)  # what the importer checked
@@ -134,12 +116,12 @@ async def test_open_imports_a_urdf_as_an_unsaved_robot(in_tmp):
     assert not (URDFS / "planar_elbow.toml").exists()
 
 
-async def test_a_tree_asks_for_the_tip(in_tmp):
+async def test_a_tree_asks_for_the_tip(in_tmp, editor_app):
     tree = in_tmp / "forked.urdf"
     tree.write_text(TREE)
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "ctrl+o")
         await type_path(pilot, tree)
         assert await showing(pilot, Choice)
@@ -165,12 +147,12 @@ async def test_a_tree_asks_for_the_tip(in_tmp):
         assert editor(app).robot.dof == 1
 
 
-async def test_the_ur5_tree_from_the_list(in_tmp):
+async def test_the_ur5_tree_from_the_list(in_tmp, editor_app):
     (in_tmp / "robots").mkdir()
     shutil.copy(URDFS / "ur5.urdf", in_tmp / "robots" / "ur5.urdf")
     app = editor_app()
     async with app.run_test(size=(120, 40)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         first = str(app.screen.query_one(OptionList).get_option_at_index(0).prompt)
@@ -204,7 +186,7 @@ def import_file_leaves(path: Path) -> list[str]:
         ("<robot name='x'><link name='a'/></robot>", "cannot import: "),
     ],
 )
-async def test_a_bad_urdf_shows_its_error_and_changes_nothing(in_tmp, text, message):
+async def test_a_bad_urdf_shows_its_error_and_changes_nothing(in_tmp, text, message, editor_app):
     bad = in_tmp / "bad.urdf"
     bad.write_text(text)
     try:
@@ -215,7 +197,8 @@ async def test_a_bad_urdf_shows_its_error_and_changes_nothing(in_tmp, text, mess
         raise AssertionError("the importer took it")
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        before = (await editor_up(pilot)).robot
+        await started(pilot)
+        before = editor(pilot.app).robot
         await press(pilot, "ctrl+o")
         await type_path(pilot, bad)
         await until(pilot, lambda: error_text(app), "the error")
@@ -230,14 +213,14 @@ async def test_a_bad_urdf_shows_its_error_and_changes_nothing(in_tmp, text, mess
     assert not (in_tmp / "robots").exists()
 
 
-async def test_a_csv_is_imported_too(in_tmp):
+async def test_a_csv_is_imported_too(in_tmp, editor_app):
     robot, _ = load_robot("gantry")
     (in_tmp / "robots").mkdir()
     csv = in_tmp / "robots" / "gantry.csv"
     csv.write_text(export_text(robot, "csv"))
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         lines = app.screen.query_one(OptionList)
@@ -276,10 +259,11 @@ async def test_importing_on_the_simulator_runs_the_robot_unsaved(in_tmp):
     assert load(saved) == import_file(source).robot
 
 
-async def test_import_from_the_editors_palette_takes_only_urdf_and_csv(in_tmp):
+async def test_import_from_the_editors_palette_takes_only_urdf_and_csv(in_tmp, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        before = (await editor_up(pilot)).robot
+        await started(pilot)
+        before = editor(pilot.app).robot
         await run_palette(pilot, "import", "Import a URDF or CSV file…")
         assert await showing(pilot, OpenRobot)
         assert app.screen.importing
@@ -295,12 +279,12 @@ async def test_import_from_the_editors_palette_takes_only_urdf_and_csv(in_tmp):
         assert editor(app).robot == before and not editor(app).dirty
 
 
-async def test_typing_on_the_list_types_the_path():
+async def test_typing_on_the_list_types_the_path(editor_app):
     """ctrl+o, then a path typed at once (the list has the focus), then enter."""
     source = URDFS / "planar_elbow.urdf"
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        await editor_up(pilot)
+        await started(pilot)
         await press(pilot, "ctrl+o")
         assert await showing(pilot, OpenRobot)
         assert app.screen.focused is app.screen.query_one("OptionList")  # bundled robots

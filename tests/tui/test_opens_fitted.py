@@ -8,17 +8,10 @@ import numpy as np
 import pytest
 from pilot_helpers import press, started
 
-from dhsim_tui.core import load_robot
 from dhsim_tui.render.picture import NO_ROLE, ROLE_INDEX
 from dhsim_tui.scene import build_wireframe
-from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.widgets.arm_view import ArmView
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
-
-
-def make_app(name: str) -> DhsimApp:
-    robot, path = load_robot(name)
-    return DhsimApp(robot, path, animate=False)
 
 
 def shown(app) -> list[ArmView]:
@@ -37,11 +30,11 @@ def link_share(view: ArmView) -> float:
 
 @pytest.mark.parametrize("size", [(80, 24), (120, 36)])
 @pytest.mark.parametrize("name", ["puma560", "irb140", "scara_pedestal", "gantry"])
-async def test_the_views_open_fitted_to_the_arm_without_a_key(name, size):
+async def test_the_views_open_fitted_to_the_arm_without_a_key(name, size, control_app):
     """Before any key, every view on screen shows the arm large: its links
     span about half the picture one way or more (the work area left a Puma's
     links a quarter of the front view at 80x24)."""
-    app = make_app(name)
+    app = control_app(name)
     async with app.run_test(size=size) as pilot:
         await started(pilot)
         views = shown(app)
@@ -58,8 +51,8 @@ async def test_the_views_open_fitted_to_the_arm_without_a_key(name, size):
             assert "fit (F)" in str(view.border_subtitle)
 
 
-async def test_0_shows_the_work_area_and_f_toggles_back_and_forth():
-    app = make_app("puma560")
+async def test_0_shows_the_work_area_and_f_toggles_back_and_forth(control_app):
+    app = control_app("puma560")
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
@@ -82,11 +75,11 @@ async def test_0_shows_the_work_area_and_f_toggles_back_and_forth():
         assert not panel.fit and front.picture.xlim == pytest.approx(whole)
 
 
-async def test_the_views_fit_the_programs_path_while_it_is_drawn():
+async def test_the_views_fit_the_programs_path_while_it_is_drawn(control_app):
     """A path drawn (the trail the control screen hands the views) well away
     from the arm is in every fitted view; when it goes, the views fit the
     arm alone again."""
-    app = make_app("puma560")
+    app = control_app("puma560")
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
@@ -110,10 +103,10 @@ async def test_the_views_fit_the_programs_path_while_it_is_drawn():
 
 
 @pytest.mark.parametrize("name", ["irb140", "ur5"])
-async def test_z_0_is_on_the_floors_row_at_80x24(name):
+async def test_z_0_is_on_the_floors_row_at_80x24(name, control_app):
     """The "0" of the front view's z axis is on the row the floor is drawn
     in, as the app opens (it was a row above it)."""
-    app = make_app(name)
+    app = control_app(name)
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         for key in ("", "0"):  # fitted, then the work area

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
-from pilot_helpers import non_ascii_outside_views, press, showing, until
+from pilot_helpers import non_ascii_outside_views, press, showing, started, until
 from textual.command import CommandInput, CommandList, CommandPalette, SearchIcon
 
 from dhsim_tui.core import load_robot
@@ -15,6 +15,7 @@ from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
+from tui.conftest import editor
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
@@ -22,20 +23,6 @@ pytestmark = pytest.mark.usefixtures("in_tmp")
 def puma_app(**options) -> DhsimApp:
     robot, path = load_robot("puma560")
     return DhsimApp(robot, path, animate=False, **options)
-
-
-async def started(pilot) -> None:
-    """The app's first screen is up: the simulator, or the editor it opens."""
-    app = pilot.app
-    kind = EditorScreen if app.start == "edit" else ControlScreen
-    await until(pilot, lambda: isinstance(app.screen, kind) and app.screen._ready, kind.__name__)
-
-
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
 
 
 def listed(app: DhsimApp) -> list[str]:
@@ -212,7 +199,7 @@ async def test_no_palette_over_a_dialog():
         assert not CommandPalette.is_open(app)
 
 
-async def test_a_pose_name_is_shown_as_text_not_markup():
+async def test_a_pose_name_is_shown_as_text_not_markup(screen_text):
     robot, _ = load_robot("puma560")
     robot = replace(robot, poses=(("[b]x[/b]", robot.home), ("[red", robot.home)), programs=())
     app = DhsimApp(robot, None, animate=False)
@@ -221,7 +208,7 @@ async def test_a_pose_name_is_shown_as_text_not_markup():
         names = await open_palette(pilot, "pose")
         assert "Go to pose [b]x[/b]" in names
         assert "Go to pose [red" in names
-        shown = "\n".join(strip.text for strip in app.screen._compositor.render_strips())
+        shown = screen_text(app)
         assert "Go to pose [b]x[/b]" in shown and "Go to pose [red" in shown
         await press(pilot, "escape")
         await run_command(pilot, "[b]", "Go to pose [b]x[/b]")

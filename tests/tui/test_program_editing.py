@@ -10,13 +10,12 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from pilot_helpers import press, until
+from pilot_helpers import press, started, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.model.kinematics import read_out
 from dhsim_tui.core.model.program import Program, Step
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.widgets.pose_panel import PosePanel
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 
@@ -26,17 +25,8 @@ QN = (0.0, 45.0, -180.0, 0.0, 45.0, 0.0)
 UP = (0.0, 45.0, -135.0, 0.0, 45.0, 0.0)
 
 
-def status(app) -> str:
-    return str(app.screen.query_one("#status").render())
-
-
 def steps(app, name: str = "p") -> tuple[Step, ...]:
     return app.robot.program(name).steps
-
-
-async def start(pilot) -> ControlScreen:
-    await until(pilot, lambda: isinstance(pilot.app.screen, ControlScreen), "the simulator")
-    return pilot.app.screen
 
 
 def app_with(*programs: Program, size_robot=None) -> DhsimApp:
@@ -55,10 +45,11 @@ async def type_in(pilot, text: str) -> None:
     )
 
 
-async def test_R_appends_and_I_inserts_after_the_selected_step():
+async def test_R_appends_and_I_inserts_after_the_selected_step(status):
     app = app_with(Program("p", (Step("joint", QN), Step("joint", UP), Step("wait", seconds=1.0))))
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "g")  # step 1 selected
         assert screen.query_one(ProgramPanel).selected == 0
         await press(pilot, "R")
@@ -72,10 +63,10 @@ async def test_R_appends_and_I_inserts_after_the_selected_step():
         assert len(steps(app)) == 3
 
 
-async def test_D_adds_a_wait_and_S_sets_a_speed_both_undone():
+async def test_D_adds_a_wait_and_S_sets_a_speed_both_undone(status):
     app = app_with(Program("p", (Step("joint", QN), Step("linear", UP))))
     async with app.run_test(size=(100, 30)) as pilot:
-        await start(pilot)
+        await started(pilot)
         await press(pilot, "g", "up", "up", "D")
         await type_in(pilot, "2.5")
         assert [s.move for s in steps(app)] == ["joint", "wait", "linear"]
@@ -99,7 +90,7 @@ async def test_enter_edits_joint_values_and_a_linear_moves_tool_pose():
     puma = load_robot("puma560")[0]
     app = app_with(Program("p", (Step("joint", QN), Step("linear", UP))))
     async with app.run_test(size=(100, 30)) as pilot:
-        await start(pilot)
+        await started(pilot)
         await press(pilot, "g", "up", "up", "enter")
         await type_in(pilot, "10, 40, -170, 0, 50, 0")
         assert steps(app)[0].to == (10.0, 40.0, -170.0, 0.0, 50.0, 0.0)
@@ -119,10 +110,11 @@ async def test_enter_edits_joint_values_and_a_linear_moves_tool_pose():
         assert np.max(np.abs(np.subtract(new, UP))) < 30  # the same branch, nearby
 
 
-async def test_rename_new_program_and_the_next_one():
+async def test_rename_new_program_and_the_next_one(status):
     app = app_with(Program("p", (Step("joint", QN),)), Program("q", (Step("wait", seconds=1.0),)))
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         panel = screen.query_one(ProgramPanel)
         await press(pilot, "g", "r")
         await type_in(pilot, "q")  # taken
@@ -144,7 +136,8 @@ async def test_a_long_program_scrolls_with_the_selection():
     many = Program("p", tuple(Step("wait", seconds=float(i + 1)) for i in range(20)))
     app = app_with(many)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         panel = screen.query_one(ProgramPanel)
         await press(pilot, "g")
         await until(pilot, lambda: "of 20" in str(panel.border_title), "the range")
@@ -159,7 +152,8 @@ async def test_a_long_program_scrolls_with_the_selection():
 async def test_at_80x24_the_program_shares_the_side_with_the_read_out():
     app = app_with(Program("p", tuple(Step("wait", seconds=1.0) for _ in range(8))))
     async with app.run_test(size=(80, 24)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "g")
         pose, panel = screen.query_one(PosePanel), screen.query_one(ProgramPanel)
         await until(pilot, lambda: pose.compact, "the compact read-out")
@@ -174,7 +168,8 @@ async def test_the_cartesian_key_legend_never_runs_two_hints_together():
 
     app = app_with()
     async with app.run_test(size=(120, 36)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "c")
         hints = screen.query_one(KeyHints)
         await until(pilot, lambda: "frame" in str(hints.render()), "the Cartesian legend")

@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from pilot_helpers import press, until
+from pilot_helpers import press, started, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.model.program import Program, Step
@@ -16,28 +16,18 @@ from dhsim_tui.core.model.text import counted
 from dhsim_tui.core.motion.path_check import LIMIT, check_path
 from dhsim_tui.core.motion.trajectory import sample
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
 
-def status(app) -> str:
-    return str(app.screen.query_one("#status").render())
-
-
-async def started(pilot) -> ControlScreen:
-    await until(pilot, lambda: isinstance(pilot.app.screen, ControlScreen), "the simulator")
-    await pilot.pause()
-    return pilot.app.screen
-
-
-async def test_record_two_poses_and_play_them():
+async def test_record_two_poses_and_play_them(status):
     robot = replace(load_robot("puma560")[0], programs=())
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "R")  # the home pose as step 1
         await press(pilot, "right", "right", "right", "right_square_bracket", "right")
         await pilot.pause()
@@ -66,7 +56,7 @@ async def test_record_two_poses_and_play_them():
         assert "kept until you quit" in status(app) or app.has_unsaved_poses
 
 
-async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it(monkeypatch):
+async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it(monkeypatch, status):
     # the playback's clock stands still: however slow the machine, the
     # program is still playing when space pauses it
     monkeypatch.setattr("dhsim_tui.tui.screens.control_program.monotonic", lambda: 0.0)
@@ -78,7 +68,8 @@ async def test_a_program_with_a_problem_says_it_and_n_jumps_to_it(monkeypatch):
     assert problems and problems[0].kind == LIMIT  # computed here, independently of the screen
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "g", "space")
         await until(pilot, lambda: "playing edge" in status(app), "playback")
         assert counted(len(problems), "problem") in status(app)
@@ -103,7 +94,8 @@ async def test_the_tools_path_is_drawn_in_every_view_while_a_program_is_loaded()
     demo = robot.program("demo")
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(120, 36)) as pilot:
-        screen = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         views = screen.query_one(ViewsPanel)
 
         def trails():
@@ -129,11 +121,12 @@ async def test_the_tools_path_is_drawn_in_every_view_while_a_program_is_loaded()
         await until(pilot, lambda: not any(trails()), "the path gone")
 
 
-async def test_play_faster_and_the_plot_at_the_time_played():
+async def test_play_faster_and_the_plot_at_the_time_played(status):
     robot = load_robot("puma560")[0]
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "g", "right_square_bracket", "right_square_bracket")
         assert screen._programs.speed == 4.0 and "×4" in status(app)
         began = screen._programs
@@ -150,11 +143,12 @@ async def test_play_faster_and_the_plot_at_the_time_played():
         await until(pilot, lambda: app.screen is screen, "back")
 
 
-async def test_L_makes_R_record_linear_moves_and_the_title_says_so():
+async def test_L_makes_R_record_linear_moves_and_the_title_says_so(status):
     robot = replace(load_robot("puma560")[0], programs=())
     app = DhsimApp(robot, animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         panel = screen.query_one(ProgramPanel)
         await press(pilot, "R")
         await pilot.pause()

@@ -8,7 +8,7 @@ import threading
 from dataclasses import replace
 
 import pytest
-from pilot_helpers import press, until
+from pilot_helpers import press, started, until
 from waiting import HANG
 
 from dhsim_tui.core import load_robot
@@ -16,7 +16,6 @@ from dhsim_tui.core.model.program import Program, Step
 from dhsim_tui.core.motion.trajectory import Sampling
 from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens import control_program
-from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.widgets.program_panel import ProgramPanel
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
@@ -65,24 +64,16 @@ def gate(monkeypatch):
     made.open()
 
 
-def status(app) -> str:
-    return str(app.screen.query_one("#status").render())
-
-
-async def start(pilot) -> ControlScreen:
-    await until(pilot, lambda: isinstance(pilot.app.screen, ControlScreen), "the simulator")
-    return pilot.app.screen
-
-
 def robot():
     return replace(load_robot("puma560")[0], programs=(LONG,))
 
 
-async def test_a_long_program_plays_while_the_rest_is_sampled(monkeypatch, gate):
+async def test_a_long_program_plays_while_the_rest_is_sampled(monkeypatch, gate, status):
     monkeypatch.setattr(control_program, "monotonic", lambda: 0.0)  # the clock stands still
     app = DhsimApp(robot(), animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         player = screen._programs
         await press(pilot, "g", "space")
         await until(pilot, lambda: player.playing, "playing the first seconds")
@@ -101,10 +92,11 @@ async def test_a_long_program_plays_while_the_rest_is_sampled(monkeypatch, gate)
         assert "sampling" not in str(panel.border_subtitle)
 
 
-async def test_escape_stops_the_sampling_and_the_path_goes(gate):
+async def test_escape_stops_the_sampling_and_the_path_goes(gate, status):
     app = DhsimApp(robot(), animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         player = screen._programs
         await press(pilot, "g", "space")
         await until(pilot, gate.holding.is_set, "the sampling held")
@@ -122,18 +114,19 @@ async def test_escape_stops_the_sampling_and_the_path_goes(gate):
         assert player.playback is None and "stopped sampling long" in status(app)
 
 
-async def test_n_on_a_program_not_yet_sampled_jumps_once_it_is():
+async def test_n_on_a_program_not_yet_sampled_jumps_once_it_is(status):
     to_limit = Program("edge", (Step("joint", (160.0, 0, 0, 0, 0, 0)), Step("wait", seconds=0.2)))
     app = DhsimApp(replace(load_robot("puma560")[0], programs=(to_limit,)), animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "g", "n")
         await until(pilot, lambda: "Th1" in status(app), "the first problem said")
         assert screen._programs.playback.trajectory.complete
         assert abs(screen.q[0] - 160.0) < 1e-6
 
 
-async def test_a_program_over_the_hour_from_where_the_arm_is_is_refused_before_sampling():
+async def test_a_program_over_the_hour_from_where_the_arm_is_is_refused_before_sampling(status):
     # from home the move takes no time; from where the arm is jogged to, the
     # hour is passed: refused in closed form, naming the step
     back = Program(
@@ -141,7 +134,8 @@ async def test_a_program_over_the_hour_from_where_the_arm_is_is_refused_before_s
     )
     app = DhsimApp(replace(load_robot("puma560")[0], programs=(back,)), animate=False)
     async with app.run_test(size=(100, 30)) as pilot:
-        screen = await start(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         await press(pilot, "right", "right", "right")
         assert screen.q[0] != 0.0
         await press(pilot, "g", "space")

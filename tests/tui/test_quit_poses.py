@@ -8,7 +8,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from pilot_helpers import press, until
+from pilot_helpers import press, started, until
 
 from dhsim_tui.core import load, load_robot
 from dhsim_tui.core.files.library import user_library_dir
@@ -211,3 +211,24 @@ async def test_the_quit_question_saves_into_a_changed_file_only_when_told(robot_
         await pilot.pause()
     assert app.return_code == 0
     assert load(robot_file).pose("here") == POSE
+
+
+async def test_ctrl_q_over_a_dialog_still_guards_unsaved_edits(editor_app):
+    app = editor_app(*load_robot("gantry"))
+    async with app.run_test(size=(80, 24)) as pilot:
+        await started(pilot)
+        await press(pilot, "t", "question_mark", "ctrl+q")
+        assert isinstance(app.screen, SaveGuard)
+        await press(pilot, "escape")
+        assert app.is_running
+
+
+async def test_a_pose_kept_only_in_memory_counts_as_unsaved_in_the_editor(control_app):
+    app = control_app("gantry")  # bundled: P keeps the pose in memory only
+    async with app.run_test(size=(80, 24)) as pilot:
+        await press(pilot, "right", "P", "enter", "e")
+        assert isinstance(app.screen, EditorScreen) and app.screen.dirty
+        await press(pilot, "escape")
+        assert isinstance(app.screen, SaveGuard)
+        await press(pilot, "escape")
+        assert isinstance(app.screen, EditorScreen)

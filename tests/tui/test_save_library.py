@@ -21,6 +21,7 @@ from dhsim_tui.tui.flows.save import SaveTarget
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor
 
 
 @pytest.fixture
@@ -41,10 +42,6 @@ def work(tmp_path, monkeypatch) -> Path:
 
 def text_of(app, selector: str) -> str:
     return str(app.screen.query_one(selector).render())
-
-
-def editor(app) -> EditorScreen:
-    return next(s for s in reversed(app.screen_stack) if isinstance(s, EditorScreen))
 
 
 async def new_robot_up_to_the_save_dialog(pilot) -> None:

@@ -25,29 +25,11 @@ from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import FileChanged
 from dhsim_tui.tui.screens.editor import EditorScreen
+from tui.conftest import editor, robot_text
 
 pytestmark = pytest.mark.usefixtures("in_tmp")
 
-TEXT = """\
-# my arm: keep this comment
-name = "arm"
-units = "mm"
-
-[poses]
-home = [0.0, 0.0]
-
-[[joints]]
-theta = 0.0
-d = 0.0
-a = 100.0  # the upper arm
-alpha = 0.0
-
-[[joints]]
-theta = 0.0
-d = 0.0
-a = 50.0
-alpha = 0.0
-"""
+TEXT = robot_text("commented_arm")
 
 
 def while_saving(monkeypatch, path: Path, action: Callable[[], None]) -> list[str]:
@@ -77,10 +59,6 @@ def outside_edit(path: Path) -> Callable[[], None]:
     return edit
 
 
-def editor(app: DhsimApp) -> EditorScreen:
-    return next(s for s in reversed(app.screen_stack) if isinstance(s, EditorScreen))
-
-
 def dialog_text(app: DhsimApp) -> str:
     """The question's words, as the dialog's labels hold them."""
     return re.sub(r"\s+", " ", " ".join(str(label.render()) for label in app.screen.query(Label)))
@@ -93,12 +71,8 @@ async def edit_cell(pilot, row: int, column: int, text: str) -> None:
     await press(pilot, "enter", "ctrl+u", *text, "enter")
 
 
-def status(app: DhsimApp) -> str:
-    return str(editor(app).query_one("#editor-status").render())
-
-
 @pytest.mark.parametrize("answer", ["o", "r", "c"])
-async def test_a_change_made_during_ctrl_s_asks_and_is_kept(answer, in_tmp, monkeypatch):
+async def test_a_change_made_during_ctrl_s_asks_and_is_kept(answer, in_tmp, monkeypatch, status):
     file = in_tmp / "arm.toml"
     file.write_text(TEXT, encoding="utf-8")
     app = DhsimApp(load(file), file, start="edit", animate=False)
@@ -156,7 +130,7 @@ async def test_a_change_made_during_P_asks_and_cancel_keeps_it(in_tmp, monkeypat
     assert file.read_bytes() == theirs
 
 
-async def test_a_symlink_to_the_same_bytes_swapped_in_after_opening_asks(in_tmp):
+async def test_a_symlink_to_the_same_bytes_swapped_in_after_opening_asks(in_tmp, status):
     file = in_tmp / "arm.toml"
     file.write_text(TEXT, encoding="utf-8")
     app = DhsimApp(load(file), file, start="edit", animate=False)

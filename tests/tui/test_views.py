@@ -18,11 +18,6 @@ from dhsim_tui.tui.widgets.view_style import role_styles
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 
 
-def make_app(name: str = "puma560") -> DhsimApp:
-    robot, path = load_robot(name)
-    return DhsimApp(robot, path, animate=False)
-
-
 def views(app) -> list[ArmView]:
     return list(app.screen.query(ArmView))
 
@@ -33,8 +28,8 @@ def per_column(view: ArmView) -> float:
     return 2 * (picture.xlim[1] - picture.xlim[0]) / (2 * picture.canvas[2] - 1)
 
 
-async def test_four_views_in_a_grid_at_one_scale_from_120x36():
-    app = make_app()
+async def test_four_views_in_a_grid_at_one_scale_from_120x36(control_app):
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         await press(pilot, "0")  # the work area (the views open fitted to the arm)
@@ -54,8 +49,8 @@ async def test_four_views_in_a_grid_at_one_scale_from_120x36():
         )
 
 
-async def test_one_view_at_80x24_and_tab_cycles_all_four():
-    app = make_app()
+async def test_one_view_at_80x24_and_tab_cycles_all_four(control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         seen = []
@@ -68,8 +63,8 @@ async def test_one_view_at_80x24_and_tab_cycles_all_four():
         assert [v.view.key for v in views(app) if v.display and v.size.area] == ["iso"]
 
 
-async def test_z_maximises_the_selected_view_and_restores_it():
-    app = make_app()
+async def test_z_maximises_the_selected_view_and_restores_it(control_app):
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         front = app.screen.query_one("#view-front", ArmView)
@@ -84,8 +79,8 @@ async def test_z_maximises_the_selected_view_and_restores_it():
         assert front.size == before
 
 
-async def test_zoom_about_the_arm_and_back_to_the_work_area():
-    app = make_app()
+async def test_zoom_about_the_arm_and_back_to_the_work_area(control_app):
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         await press(pilot, "0")  # the work area (the views open fitted to the arm)
@@ -113,8 +108,8 @@ async def test_zoom_about_the_arm_and_back_to_the_work_area():
         assert "zoom" not in str(front.border_subtitle)
 
 
-async def test_orbit_keys_turn_the_3d_view():
-    app = make_app()
+async def test_orbit_keys_turn_the_3d_view(control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         await press(pilot, "d")  # shows the 3-D view and turns it
@@ -130,8 +125,8 @@ async def test_orbit_keys_turn_the_3d_view():
 
 
 @pytest.mark.parametrize("size", [(80, 24), (120, 36), (200, 60)])
-async def test_the_legend_and_views_fill_the_panel_without_wrapping(size):
-    app = make_app()
+async def test_the_legend_and_views_fill_the_panel_without_wrapping(size, control_app):
+    app = control_app()
     async with app.run_test(size=size) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)

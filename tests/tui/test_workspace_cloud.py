@@ -34,7 +34,6 @@ from dhsim_tui.scene import build_wireframe, project
 from dhsim_tui.scene.cloud import cloud_dots, project_cloud
 from dhsim_tui.scene.oblique import Orbit, picture_coordinates, project_oblique
 from dhsim_tui.scene.projection import FRONT, ISO, SIDE, TOP, Polyline, ViewScene, per_dot_needed
-from dhsim_tui.tui.app import DhsimApp
 from dhsim_tui.tui.widgets.arm_view import ArmView
 from dhsim_tui.tui.widgets.view_style import role_styles
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
@@ -259,17 +258,12 @@ def test_without_colour_the_cloud_is_dim_and_colourless():
 # -- the views panel (widgets) -----------------------------------------------------
 
 
-def make_app(name: str = "puma560", **kwargs) -> DhsimApp:
-    robot, path = load_robot(name)
-    return DhsimApp(robot, path, animate=False, **kwargs)
-
-
 def _shown(app) -> list[ArmView]:
     return [v for v in app.screen.query(ArmView) if v.display and v.size.area]
 
 
-async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it():
-    app = make_app()
+async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it(control_app):
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
@@ -307,8 +301,8 @@ async def test_set_cloud_draws_behind_the_arm_in_every_view_and_none_restores_it
         assert app.export_screenshot() == screen_before
 
 
-async def test_the_cloud_in_ascii_mode_is_dots():
-    app = make_app(ascii=True)
+async def test_the_cloud_in_ascii_mode_is_dots(control_app):
+    app = control_app(ascii=True)
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
@@ -326,9 +320,9 @@ async def test_the_cloud_in_ascii_mode_is_dots():
         assert ". workspace" in panel.query_one(".legend").render().plain
 
 
-async def test_the_cloud_without_colour_is_a_dim_dot_pattern(monkeypatch):
+async def test_the_cloud_without_colour_is_a_dim_dot_pattern(monkeypatch, control_app):
     monkeypatch.setenv("NO_COLOR", "1")
-    app = make_app()
+    app = control_app()
     async with app.run_test(size=(120, 36)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)
@@ -343,8 +337,8 @@ async def test_the_cloud_without_colour_is_a_dim_dot_pattern(monkeypatch):
         assert f"{MONO_MARK} workspace" in panel.query_one(".legend").render().plain
 
 
-async def test_a_cloud_set_before_the_arm_is_shown_and_empty_clouds_are_harmless():
-    app = make_app()
+async def test_a_cloud_set_before_the_arm_is_shown_and_empty_clouds_are_harmless(control_app):
+    app = control_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
         panel = app.screen.query_one(ViewsPanel)

@@ -6,12 +6,11 @@ from __future__ import annotations
 import threading
 
 import numpy as np
-from pilot_helpers import HANG, press, until
+from pilot_helpers import HANG, press, started, until
 
 from dhsim_tui.core import load_robot
 from dhsim_tui.core.analysis import workspace
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.control_jobs import CLOUD_POINTS
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.screens.palette import commands_for
@@ -22,19 +21,6 @@ from dhsim_tui.tui.widgets.views_panel import ViewsPanel
 def puma_app(ascii: bool = False) -> DhsimApp:
     robot, path = load_robot("puma560")
     return DhsimApp(robot, path, animate=False, ascii=ascii)
-
-
-async def started(pilot) -> tuple[ControlScreen, ViewsPanel]:
-    await until(
-        pilot,
-        lambda: isinstance(pilot.app.screen, ControlScreen) and pilot.app.screen._ready,
-        "the simulator",
-    )
-    return pilot.app.screen, pilot.app.screen.query_one(ViewsPanel)
-
-
-def status(app) -> str:
-    return str(app.screen.query_one("#status").render())
 
 
 class Gate:
@@ -55,10 +41,12 @@ class Gate:
         monkeypatch.setattr(workspace, "position_chunks", held)
 
 
-async def test_w_shows_and_hides_the_workspace_cloud():
+async def test_w_shows_and_hides_the_workspace_cloud(status):
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        screen, views = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
+        views = screen.query_one(ViewsPanel)
         assert views.cloud is None and screen.cloud_state == "off"
         await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "on", "the cloud")
@@ -75,11 +63,13 @@ async def test_w_shows_and_hides_the_workspace_cloud():
         assert "workspace cloud off" in status(app)
 
 
-async def test_keys_go_on_while_the_cloud_is_sampled(monkeypatch):
+async def test_keys_go_on_while_the_cloud_is_sampled(monkeypatch, status):
     gate = Gate(monkeypatch)
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        screen, views = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
+        views = screen.query_one(ViewsPanel)
         home = screen.q
         await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "computing", "the sampling")
@@ -105,7 +95,9 @@ async def test_w_again_while_sampling_never_shows_the_cloud(monkeypatch):
     gate = Gate(monkeypatch)
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        screen, views = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
+        views = screen.query_one(ViewsPanel)
         await press(pilot, "W")
         await until(pilot, lambda: screen.cloud_state == "computing", "the sampling")
         await press(pilot, "W")
@@ -121,10 +113,12 @@ async def test_w_again_while_sampling_never_shows_the_cloud(monkeypatch):
         assert views.cloud is None and screen.cloud_state == "off"
 
 
-async def test_the_palette_shows_and_hides_the_workspace():
+async def test_the_palette_shows_and_hides_the_workspace(status):
     app = puma_app(ascii=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        screen, views = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
+        views = screen.query_one(ViewsPanel)
         titles = [c.title for c in commands_for(app, screen)]
         assert "View: show the workspace" in titles and "View: hide the workspace" not in titles
         next(c for c in commands_for(app, screen) if c.title == "View: show the workspace").run()
@@ -139,7 +133,8 @@ async def test_the_palette_shows_and_hides_the_workspace():
 async def test_w_b_and_f_are_in_the_help_and_have_tooltips():
     app = puma_app()
     async with app.run_test(size=(80, 24)) as pilot:
-        screen, _ = await started(pilot)
+        await started(pilot)
+        screen = pilot.app.screen
         keys = {b.key: b for b in [*screen.BINDINGS, *CartesianPanel.BINDINGS]}
         for key in ("W", "b", "f"):
             assert keys[key].id and keys[key].tooltip

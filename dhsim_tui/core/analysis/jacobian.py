@@ -28,7 +28,7 @@ from dhsim_tui.core.analysis.cholesky import root_gram_det
 from dhsim_tui.core.analysis.jacobian_codegen import compile_jacobian
 from dhsim_tui.core.analysis.workspace import length_scale
 from dhsim_tui.core.model.errors import DhsimError
-from dhsim_tui.core.model.kinematics import COMPILE_AFTER, _floats, _start
+from dhsim_tui.core.model.kinematics import COMPILE_AFTER, as_floats, start_state
 from dhsim_tui.core.model.kinematics_batch import check_out
 from dhsim_tui.core.model.kinematics_codegen import (
     ChainWriter,
@@ -106,7 +106,7 @@ def _compile_plain(robot: Robot) -> Callable:
     of jacobian_codegen's plain Jacobian, so the same numbers, but no copies,
     and nothing the Jacobian does not need (often the last joint's turn)."""
     tool = None if robot.tool.is_identity else robot.kinematics.tool
-    writer = ChainWriter(robot, tool, _start(robot))
+    writer = ChainWriter(robot, tool, start_state(robot))
     standard = robot.convention == "standard"
     axes = []  # each joint's axis and a point on it: z and origin of frame i-1 (or i)
     for i in range(robot.dof):
@@ -175,7 +175,7 @@ def jacobian(robot: Robot, q: Sequence[float], out: np.ndarray | None = None) ->
     except AttributeError:
         cached = _compiled(robot)
     if q.__class__ is _ndarray:
-        q = _floats(q)
+        q = as_floats(q)
     if out is None:
         out = _empty(cached.shape)
     elif out.__class__ is not _ndarray or out.shape != cached.shape or out.dtype is not _F64:

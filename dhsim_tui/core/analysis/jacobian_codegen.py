@@ -13,7 +13,12 @@ import math
 import numpy as np
 
 from dhsim_tui.core.analysis.workspace import length_scale
-from dhsim_tui.core.model.kinematics import _constant_lines, _joint_lines, _start, _step
+from dhsim_tui.core.model.kinematics import (
+    compile_step,
+    constant_transform_lines,
+    joint_transform_lines,
+    start_state,
+)
 from dhsim_tui.core.model.robot import Robot
 
 _STATE = "x0, x1, x2, y0, y1, y2, z0, z1, z2, p0, p1, p2"
@@ -51,9 +56,9 @@ def _first_axis(robot: Robot) -> tuple[float, ...]:
     D-H: frame 0's z and origin; modified: frame 1's, whose z and (for a
     revolute joint) origin the joint's own turn leaves alone. Computed by the
     chain's own lines, so the same bits as at run time."""
-    state = _start(robot)
+    state = start_state(robot)
     if robot.convention != "standard":
-        state = _step(tuple(_joint_lines(robot, 0, "qi")))(state, 0.0)
+        state = compile_step(tuple(joint_transform_lines(robot, 0, "qi")))(state, 0.0)
     return tuple(state[6:12])
 
 
@@ -80,7 +85,7 @@ def jacobian_parts(
     n = robot.dof
     standard = robot.convention == "standard"
     tool = None if robot.tool.is_identity else robot.kinematics.tool
-    body = [f"{_STATE} = {', '.join(repr(float(v)) for v in _start(robot))}"]
+    body = [f"{_STATE} = {', '.join(repr(float(v)) for v in start_state(robot))}"]
     axes: list[tuple] = []
 
     def capture(i: int) -> tuple:
@@ -92,14 +97,14 @@ def jacobian_parts(
     for i in range(n):
         if standard:
             axes.append(capture(i))
-        body += _joint_lines(robot, i)
+        body += joint_transform_lines(robot, i)
         if not standard:
             axes.append(capture(i))
     if tool is not None:
         if not tool_rotation:
             tool = tool.copy()
             tool[:3, :3] = np.eye(3)
-        body += _constant_lines(tool)
+        body += constant_transform_lines(tool)
     inverse = 1.0 / length_scale(robot) if normalise else 1.0
     columns = []
     lines = []

@@ -1,4 +1,5 @@
-"""The seed's work area and the robot's reach (reference §3), the length
+"""The seed's work area and the robot's reach (kinematics
+reference section 3: the world frame and work area), the length
 the solvers measure against (:func:`length_scale`), and the workspace: a
 cloud of tool positions from random joint vectors, summarised."""
 

@@ -48,7 +48,7 @@ import tomli_w
 from dhsim_tui.core.files.atomicfile import file_error as _error
 from dhsim_tui.core.files.atomicfile import read_file, remove_stale_temps, write_atomic
 from dhsim_tui.core.files.formats import IMPORT_SUFFIXES
-from dhsim_tui.core.files.robotschema import _defaults, robot_from_dict, robot_to_dict
+from dhsim_tui.core.files.robotschema import file_defaults, robot_from_dict, robot_to_dict
 from dhsim_tui.core.files.tomledit import update_text
 from dhsim_tui.core.files.tomlitems import section_text
 from dhsim_tui.core.files.tomlparse import parse_toml
@@ -232,7 +232,7 @@ def render(robot: Robot, base_text: str | None = None) -> str:
             current = None
         try:
             parse_toml(base)  # not TOML (or hostile): tomlkit is not given it
-            data, defaults = robot_to_dict(robot, full=True), _defaults(robot)
+            data, defaults = robot_to_dict(robot, full=True), file_defaults(robot)
             text = update_text(base, data, defaults, current, ordered=("poses", "programs"))
             if "\r\n" in base and base.count("\n") == base.count("\r\n"):  # Windows lines
                 text = text.replace("\r\n", "\n").replace("\n", "\r\n")

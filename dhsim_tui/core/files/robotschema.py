@@ -159,7 +159,7 @@ def _values(joint: Joint) -> tuple[float, ...]:
     return (joint.theta, joint.d, joint.a, joint.alpha, joint.min, joint.max)
 
 
-def _defaults(robot: Robot) -> dict[str, Any]:
+def file_defaults(robot: Robot) -> dict[str, Any]:
     """What a file may leave out, for this robot (limits depend on type and unit)."""
     return {
         "units": "mm",

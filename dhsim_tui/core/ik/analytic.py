@@ -74,11 +74,11 @@ from dhsim_tui.core.ik.geometry import (
     Geometry,
     detect,
 )
-from dhsim_tui.core.ik.parallel import _three_parallel
+from dhsim_tui.core.ik.parallel import solve_three_parallel
 from dhsim_tui.core.ik.right_angle_wrist import solve as right_angle_wrist
 from dhsim_tui.core.ik.subproblems import DOUBLE_ROOT
-from dhsim_tui.core.ik.vectors import Motion, Vec, _compose
-from dhsim_tui.core.ik.wrist import _spherical
+from dhsim_tui.core.ik.vectors import Motion, Vec, compose_motions
+from dhsim_tui.core.ik.wrist import solve_spherical_wrist
 
 if TYPE_CHECKING:
     from dhsim_tui.core.model.robot import Robot
@@ -149,11 +149,11 @@ def solve(
         return True
 
     rot = (f[0], f[1], f[2], f[4], f[5], f[6], f[8], f[9], f[10])
-    goal = _compose((rot, (f[3], f[7], f[11])), geometry.home_inverse)
+    goal = compose_motions((rot, (f[3], f[7], f[11])), geometry.home_inverse)
     if geometry.kind == THREE_PARALLEL:
-        deltas = _three_parallel(geometry, goal, free)
+        deltas = solve_three_parallel(geometry, goal, free)
     else:
-        deltas = _spherical(geometry, goal, free, arm_fits)
+        deltas = solve_spherical_wrist(geometry, goal, free, arm_fits)
     tau = 2 * math.pi
     remainder = math.remainder
     out = []

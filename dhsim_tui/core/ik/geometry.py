@@ -12,17 +12,17 @@ from typing import TYPE_CHECKING
 
 from dhsim_tui.core.analysis.workspace import reach
 from dhsim_tui.core.ik.right_angle_wrist import ArmFrames, arm_frames
-from dhsim_tui.core.ik.subproblems import _EPS, _sp1
+from dhsim_tui.core.ik.subproblems import EPS, turn_to_direction
 from dhsim_tui.core.ik.vectors import (
     Motion,
     Vec,
-    _add,
-    _cross,
-    _dot,
-    _inverse,
-    _norm,
-    _scale,
-    _sub,
+    add,
+    cross_product,
+    dot,
+    invert_motion,
+    norm,
+    scaled,
+    sub,
 )
 
 if TYPE_CHECKING:
@@ -68,18 +68,18 @@ class Geometry:
 
 def _closest(r1: Vec, w1: Vec, r2: Vec, w2: Vec) -> tuple[float, Vec]:
     """Distance between two non-parallel lines and the midpoint of their closest points."""
-    n = _cross(w1, w2)
-    nn = _dot(n, n)
-    d = _sub(r2, r1)
-    t1 = _dot(_cross(d, w2), n) / nn
-    t2 = _dot(_cross(d, w1), n) / nn
-    a = _add(r1, _scale(w1, t1))
-    b = _add(r2, _scale(w2, t2))
-    return _norm(_sub(a, b)), _scale(_add(a, b), 0.5)
+    n = cross_product(w1, w2)
+    nn = dot(n, n)
+    d = sub(r2, r1)
+    t1 = dot(cross_product(d, w2), n) / nn
+    t2 = dot(cross_product(d, w1), n) / nn
+    a = add(r1, scaled(w1, t1))
+    b = add(r2, scaled(w2, t2))
+    return norm(sub(a, b)), scaled(add(a, b), 0.5)
 
 
 def _parallel(a: Vec, b: Vec) -> bool:
-    return _norm(_cross(a, b)) <= GEOMETRY_TOL
+    return norm(cross_product(a, b)) <= GEOMETRY_TOL
 
 
 def _meet(geometry_axes, geometry_points, i: int, j: int, size: float) -> Vec | None:
@@ -116,14 +116,14 @@ def _detect(robot: Robot) -> Geometry | None:
     size = reach(robot) or 1.0
     end = frames[-1]
     rot = tuple(float(v) for v in end[:3, :3].reshape(-1))
-    home_inverse = _inverse((rot, _tuple(end[:3, 3])))
+    home_inverse = invert_motion((rot, _tuple(end[:3, 3])))
     origin: Vec = (0.0, 0.0, 0.0)
     kind, centre, meeting = "", origin, origin
     if all(revolute[3:]):
         c45 = _meet(axes, points, 3, 4, size)
         c56 = _meet(axes, points, 4, 5, size)
         spherical = (
-            c45 is not None and c56 is not None and _norm(_sub(c45, c56)) <= GEOMETRY_TOL * size
+            c45 is not None and c56 is not None and norm(sub(c45, c56)) <= GEOMETRY_TOL * size
         )
         if spherical and c45 is not None:
             centre = c45
@@ -134,10 +134,10 @@ def _detect(robot: Robot) -> Geometry | None:
                 and revolute[2]
                 and _parallel(axes[1], axes[2])
                 and not _parallel(axes[0], axes[1])
-                and _norm(_cross(axes[2], _sub(centre, points[2]))) > GEOMETRY_TOL * size
+                and norm(cross_product(axes[2], sub(centre, points[2]))) > GEOMETRY_TOL * size
             ):
                 kind = SPHERICAL_PARALLEL
-            elif m12 is not None and (revolute[2] or not _parallel(axes[2], _sub(centre, m12))):
+            elif m12 is not None and (revolute[2] or not _parallel(axes[2], sub(centre, m12))):
                 kind, meeting = SPHERICAL_MEETING, m12
     if (
         not kind
@@ -154,7 +154,7 @@ def _detect(robot: Robot) -> Geometry | None:
         return None
     # joint 5's singular turn: axis 6 turned about axis 5 onto axis 4
     w4, w5, w6 = axes[3], axes[4], axes[5]
-    wrist_singular = _sp1(w5, w6, w4, math.nan)
+    wrist_singular = turn_to_direction(w5, w6, w4, math.nan)
     return Geometry(
         kind,
         axes,
@@ -181,33 +181,33 @@ def _wrist_constants(axes: tuple[Vec, ...]) -> tuple:
     """What sub-problem 2 for the wrist (axes 4, 5 turning axis 6's direction)
     needs that does not depend on the pose."""
     w4, w5, w6 = axes[3], axes[4], axes[5]
-    c45 = _dot(w4, w5)
-    cross = _cross(w4, w5)
+    c45 = dot(w4, w5)
+    cross = cross_product(w4, w5)
     # joint 6 turns a direction across axis 6 the rest of the way
-    x = _cross(w6, w4) if _norm(_cross(w6, w4)) > 1e-6 else _cross(w6, w5)
-    x = _scale(x, 1.0 / _norm(x))
-    d56 = _dot(w5, w6)
+    x = cross_product(w6, w4) if norm(cross_product(w6, w4)) > 1e-6 else cross_product(w6, w5)
+    x = scaled(x, 1.0 / norm(x))
+    d56 = dot(w5, w6)
     # w6 as sub-problem 1 about axis 5 sees it (across the axis)
     p6 = (w6[0] - d56 * w5[0], w6[1] - d56 * w5[1], w6[2] - d56 * w5[2])
-    small = p6[0] * p6[0] + p6[1] * p6[1] + p6[2] * p6[2] < _EPS
+    small = p6[0] * p6[0] + p6[1] * p6[1] + p6[2] * p6[2] < EPS
     # x as sub-problem 1 about axis 6 sees it
-    d6x = _dot(w6, x)
+    d6x = dot(w6, x)
     px = (x[0] - d6x * w6[0], x[1] - d6x * w6[1], x[2] - d6x * w6[2])
-    x_small = px[0] * px[0] + px[1] * px[1] + px[2] * px[2] < _EPS
-    return (c45, c45 * c45 - 1.0, d56, cross, _dot(cross, cross), x, p6, small, px, x_small)
+    x_small = px[0] * px[0] + px[1] * px[1] + px[2] * px[2] < EPS
+    return (c45, c45 * c45 - 1.0, d56, cross, dot(cross, cross), x, p6, small, px, x_small)
 
 
 def _parallel_constants(axes: tuple[Vec, ...], points: tuple[Vec, ...], centre: Vec) -> tuple:
     """What :func:`_position_parallel` needs that does not depend on the pose
     (each worked out as the sub-problems would, to the same digits)."""
     w1, w2, r1 = axes[0], axes[1], points[0]
-    return (_dot(w2, centre), _dot(w2, r1), _dot(w2, w1))
+    return (dot(w2, centre), dot(w2, r1), dot(w2, w1))
 
 
 def _planar_constants(axes: tuple[Vec, ...], points: tuple[Vec, ...], point: Vec) -> tuple:
-    """What :func:`_planar_fixed` needs that does not depend on the pose
-    (worked out as :func:`_sp3` and :func:`_rotate_about` would)."""
+    """What :func:`planar_at_fixed_point` needs that does not depend on the pose
+    (worked out as :func:`turns_to_distance` and :func:`rotate_about_line` would)."""
     w3, r3 = axes[2], points[2]
-    u = _sub(point, r3)  # the point from axis 3, across it
-    u1 = _sub(u, _scale(w3, _dot(w3, u)))
-    return (point, u, u1, _norm(u1), _dot(w3, u))
+    u = sub(point, r3)  # the point from axis 3, across it
+    u1 = sub(u, scaled(w3, dot(w3, u)))
+    return (point, u, u1, norm(u1), dot(w3, u))

@@ -25,7 +25,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from dhsim_tui.core.ik.numerical import IKResult, solve
-from dhsim_tui.core.ik.numerical_problem import _setup
+from dhsim_tui.core.ik.numerical_problem import cached_setup
 from dhsim_tui.core.ik.solutions import nearest_closed_form
 from dhsim_tui.core.model.robot import Robot
 
@@ -64,7 +64,7 @@ def inverse(
             if any(abs(a - b) > most for a, b, most in changes):
                 best = None  # another branch: not a continuation
         if best is not None:
-            residual = max(best.residual / _setup(robot).scale, best.orientation_error)
+            residual = max(best.residual / cached_setup(robot).scale, best.orientation_error)
             return IKResult(
                 True,
                 best.q,

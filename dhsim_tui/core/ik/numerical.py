@@ -18,7 +18,7 @@ of the cost at this size), about 9 µs an iteration for a Panda. With
 restarts, each start gives up early when it is not getting close (a
 checkpoint) or stalls, the table's starts (numerical_starts) usually need
 a few iterations, and most random starts ignore the limits until they have
-found a solution (:func:`~dhsim_tui.core.ik.numerical_descent._free_start`):
+found a solution (:func:`~dhsim_tui.core.ik.numerical_descent.solve_free_start`):
 no reachable pose is called unreachable for want of looking
 (tests/cli/test_ik_success.py). bench/ik_speed.py measures it.
 
@@ -36,8 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dhsim_tui.core.ik import reasons as ik_reasons
-from dhsim_tui.core.ik.numerical_descent import POLISH_BELOW, _descend, _free_start
-from dhsim_tui.core.ik.numerical_problem import ORIENTATION_TOL, _Problem
+from dhsim_tui.core.ik.numerical_descent import POLISH_BELOW, levenberg_marquardt, solve_free_start
+from dhsim_tui.core.ik.numerical_problem import ORIENTATION_TOL, IkProblem
 from dhsim_tui.core.ik.numerical_starts import nearest_starts
 from dhsim_tui.core.ik.rotation import rotation_error as rotation_error  # its old home
 from dhsim_tui.core.model.kinematics import robot_base
@@ -52,7 +52,7 @@ POSITION_FIRST = (1e2, 1e4)
 #: wrist near its limit: 1 start in 16; a Panda with two joints near their
 #: limits: 1 in 50) then still finds it
 STARTS_PER_RESTART = 6
-#: of the random starts, all but every FREE_EVERY-th are free (_free_start):
+#: of the random starts, all but every FREE_EVERY-th are free (solve_free_start):
 #: on the Puma a free start succeeds more often (63% against 47% on average,
 #: 15% against 10% on the hardest targets) in fewer iterations; the clamped
 #: ones keep the search honest on arms where a free descent wanders off
@@ -129,7 +129,7 @@ def solve(
     return _solve(robot, target, start, position_only, max_iter, restarts, seed)
 
 
-def _starts(problem: _Problem, x0: list[float], max_iter: int, restarts: int, seed: int):
+def _starts(problem: IkProblem, x0: list[float], max_iter: int, restarts: int, seed: int):
     """A solve's starts with restarts, in order, each as (x, free, iterations
     allowed, checkpoint, squared error allowed there): ``x0``, the table's
     nearest the target, then the seeded random ones."""
@@ -145,7 +145,7 @@ def _starts(problem: _Problem, x0: list[float], max_iter: int, restarts: int, se
 
 
 def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKResult:
-    problem = _Problem(robot, np.asarray(target, dtype=float), position_only)
+    problem = IkProblem(robot, np.asarray(target, dtype=float), position_only)
     setup = problem.setup
     first = [float(v) for v in (start if start is not None else robot.home)]
     bounds = zip(first, setup.to_internal_list, setup.low_list, setup.high_list, strict=True)
@@ -159,13 +159,13 @@ def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKR
         starts = ((x0, False, max_iter, -1, 0.0),)
     for x_start, free, budget, checkpoint, limit in starts:
         if free:
-            found, iterations = _free_start(problem, x_start, budget)
+            found, iterations = solve_free_start(problem, x_start, budget)
             total += iterations
             if found is None:
                 continue
             x, error, iterations, ok = found
         else:
-            x, error, iterations, ok = _descend(
+            x, error, iterations, ok = levenberg_marquardt(
                 problem, x_start, budget, give_up=give_up, checkpoint=checkpoint, limit=limit
             )
             total += iterations
@@ -192,11 +192,11 @@ def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKR
     if not ok and restarts > 0:
         # the starts gave up when they stalled: finish the closest one, so a
         # failure is judged where the descent really stops
-        x, error, iterations, ok = _descend(problem, x, max_iter)
+        x, error, iterations, ok = levenberg_marquardt(problem, x, max_iter)
         total += iterations
         score = problem.score(error)
     if not ok and score < POLISH_BELOW:
-        x, error, iterations, ok = _descend(problem, x, 4 * max_iter, bias=1e-12)
+        x, error, iterations, ok = levenberg_marquardt(problem, x, 4 * max_iter, bias=1e-12)
         total += iterations
     position_error, orientation_error = problem.errors(error)
     if problem.position_reached(position_error) and orientation_error <= ORIENTATION_TOL * 2:
@@ -208,7 +208,7 @@ def _solve(robot, target, start, position_only, max_iter, restarts, seed) -> IKR
         return _failure(problem, x, error, total, max_iter, probe=restarts == 0, seed=seed)
 
 
-def _failure(problem: _Problem, x, error, total: int, max_iter: int, probe: bool, seed: int):
+def _failure(problem: IkProblem, x, error, total: int, max_iter: int, probe: bool, seed: int):
     """The closest configuration found, which part failed and why."""
     position_error, _ = problem.errors(error)
     x = np.array(x, dtype=float)
@@ -218,7 +218,7 @@ def _failure(problem: _Problem, x, error, total: int, max_iter: int, probe: bool
         x_first, error_first = x.tolist(), error
         for weight in POSITION_FIRST:
             first.weight = np.array([weight, weight, weight, 1.0, 1.0, 1.0])
-            x_first, error_first, iterations, _ = _descend(first, x_first, max_iter)
+            x_first, error_first, iterations, _ = levenberg_marquardt(first, x_first, max_iter)
             total += iterations
         x, error, problem = np.array(x_first), error_first, first  # the closest position
     position_error, orientation_error = problem.errors(error)
@@ -261,7 +261,7 @@ def _failure(problem: _Problem, x, error, total: int, max_iter: int, probe: bool
     )
 
 
-def _beyond_reach(problem: _Problem) -> bool:
+def _beyond_reach(problem: IkProblem) -> bool:
     """Whether the target lies farther from frame 0's origin than any
     configuration can put the tool: each link moves it by at most |a| + |d|
     (a prismatic joint's d at its largest, offset included), the tool by its
@@ -280,7 +280,7 @@ def _beyond_reach(problem: _Problem) -> bool:
     return distance > bound * (1.0 + 1e-9) + 1e-12
 
 
-def _reachable(problem: _Problem, x: np.ndarray, max_iter: int, seed: int) -> bool:
+def _reachable(problem: IkProblem, x: np.ndarray, max_iter: int, seed: int) -> bool:
     """Whether the target can be reached from elsewhere: from a small nudge off
     ``x`` or from a few seeded random starts."""
     problem = problem.view(problem.position_only)  # unweighted
@@ -288,4 +288,4 @@ def _reachable(problem: _Problem, x: np.ndarray, max_iter: int, seed: int) -> bo
     span = problem.high - problem.low
     starts = [problem.limit(x + rng.normal(0.0, 0.05, len(x)) * np.minimum(span, 1.0))]
     starts += [rng.uniform(problem.low, problem.high) for _ in range(PROBES)]
-    return any(_descend(problem, start.tolist(), max_iter)[3] for start in starts)
+    return any(levenberg_marquardt(problem, start.tolist(), max_iter)[3] for start in starts)

@@ -1,7 +1,7 @@
 """The numerical IK solver's descents (:mod:`dhsim_tui.core.ik.numerical`):
-one damped least-squares descent from a start (:func:`_descend`, clamped to
+one damped least-squares descent from a start (:func:`levenberg_marquardt`, clamped to
 the joint limits or free of them), and a random start solved with the limits
-ignored, then turned into them (:func:`_free_start`).
+ignored, then turned into them (:func:`solve_free_start`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from dhsim_tui.core.ik.numerical_problem import (
     ORIENTATION_TOL,
     POSITION_TOL,
     UNWEIGHTED,
-    _Problem,
+    IkProblem,
 )
 
 #: the damping's bias (keeps steps finite at singularities); it fades with the
@@ -39,7 +39,7 @@ STALL_GAIN = 0.5
 FOLD_AFTER = 32
 
 
-def _plan(problem: _Problem) -> dict:
+def _plan(problem: IkProblem) -> dict:
     """:func:`~dhsim_tui.core.ik.step_codegen.descent_source`'s arguments
     for this problem's rows and weights (but the robot)."""
     setup = problem.setup
@@ -60,7 +60,7 @@ def _plan(problem: _Problem) -> dict:
     }
 
 
-def _compiled(problem: _Problem) -> Callable:
+def _compiled(problem: IkProblem) -> Callable:
     """The robot's compiled descent for this problem's rows and weights
     (:mod:`dhsim_tui.core.ik.step_codegen`), kept on the robot's setup:
     unfolded at first (about 4 ms to compile for a Panda), folded once the
@@ -85,8 +85,8 @@ def _compiled(problem: _Problem) -> Callable:
     return run
 
 
-def _descend(
-    problem: _Problem,
+def levenberg_marquardt(
+    problem: IkProblem,
     x: list[float],
     max_iter: int,
     bias: float = DAMPING_BIAS,
@@ -105,13 +105,13 @@ def _descend(
     pose, the error, the normalised Jacobian and a written-out Cholesky solve
     of the smaller normal matrix, in plain Python floats. ``give_up`` stops
     early when the error stalls (see STALL_WINDOW); ``free`` ignores the
-    joint limits (see :func:`_free_start`). At iteration ``checkpoint`` it
+    joint limits (see :func:`solve_free_start`). At iteration ``checkpoint`` it
     gives up if the error (unweighted, squared) is still above ``limit``."""
     run = _compiled(problem)
     return run(x, problem.goal, max_iter, bias, give_up, free, checkpoint, limit)
 
 
-def _into_limits(problem: _Problem, x: list[float], clamp: bool = False) -> list[float] | None:
+def _into_limits(problem: IkProblem, x: list[float], clamp: bool = False) -> list[float] | None:
     """``x`` with each revolute joint turned by whole turns into its limits,
     or None when some joint does not fit (``clamp``: then onto the limit)."""
     out = []
@@ -137,7 +137,7 @@ def _into_limits(problem: _Problem, x: list[float], clamp: bool = False) -> list
     return out
 
 
-def _free_start(problem: _Problem, x0: list[float], max_iter: int):
+def solve_free_start(problem: IkProblem, x0: list[float], max_iter: int):
     """One random start solved with the limits ignored, then its solution
     turned into the limits and finished with them.
 
@@ -148,8 +148,8 @@ def _free_start(problem: _Problem, x0: list[float], max_iter: int):
     within the limits. Where the only solution within the limits lies close to
     one of them (a Puma reaching over with its shoulder near 225°, or its wrist
     near ±100°), a free start finds it up to three times as often as a clamped
-    one. Returns _descend's tuple, or None when the solution found does not fit."""
-    x, error, iterations, ok = _descend(problem, x0, max_iter, give_up=True, free=True)
+    one. Returns levenberg_marquardt's tuple, or None when the solution found does not fit."""
+    x, error, iterations, ok = levenberg_marquardt(problem, x0, max_iter, give_up=True, free=True)
     if not ok:
         return None, iterations
     inside = _into_limits(problem, x)
@@ -159,7 +159,7 @@ def _free_start(problem: _Problem, x0: list[float], max_iter: int):
         # a redundant arm (a Panda): its solutions form a family, and the one
         # found may slide within the limits; clamped, the descent may find it
         inside = _into_limits(problem, x, clamp=True)
-        x, error, more, ok = _descend(problem, inside, max_iter, give_up=True)
+        x, error, more, ok = levenberg_marquardt(problem, inside, max_iter, give_up=True)
     else:
-        x, error, more, ok = _descend(problem, inside, max_iter)
+        x, error, more, ok = levenberg_marquardt(problem, inside, max_iter)
     return (x, error, iterations + more, ok), iterations + more

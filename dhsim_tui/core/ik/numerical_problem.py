@@ -1,5 +1,5 @@
 """One target of the numerical IK solver (:mod:`dhsim_tui.core.ik.numerical`)
-for one robot: :class:`_Problem` measures errors and Jacobians in internal
+for one robot: :class:`IkProblem` measures errors and Jacobians in internal
 units (radians for revolute joints, reach fractions for prismatic ones), on
 top of :class:`_Setup`, what no target changes, kept on the robot; and the
 tolerances a solution must meet.
@@ -73,7 +73,8 @@ class _Setup:
             shared.flags.writeable = False  # every problem of this robot reads them
 
 
-def _setup(robot: Robot) -> _Setup:
+def cached_setup(robot: Robot) -> _Setup:
+    """The robot's solve setup, made once and kept on the robot."""
     cached = robot.__dict__.get("_ik_setup")
     if cached is None:
         with np.errstate(all="ignore"):  # an arm too small to compute with: judged later
@@ -82,12 +83,12 @@ def _setup(robot: Robot) -> _Setup:
     return cached
 
 
-class _Problem:
+class IkProblem:
     """One target for one robot: errors and steps in internal units (radians for
     revolute joints, reach fractions for prismatic ones)."""
 
     def __init__(self, robot: Robot, target: np.ndarray, position_only: bool) -> None:
-        setup = _setup(robot)
+        setup = cached_setup(robot)
         self.robot = robot
         self.setup = setup
         self.kin = robot.kinematics
@@ -165,6 +166,6 @@ class _Problem:
     def position_reached(self, position_error: float) -> bool:
         return position_error <= POSITION_TOL * self.scale * 2
 
-    def view(self, position_only: bool) -> _Problem:
+    def view(self, position_only: bool) -> IkProblem:
         """The same target judged on its position only, or on the whole pose."""
-        return _Problem(self.robot, self.target, position_only)
+        return IkProblem(self.robot, self.target, position_only)

@@ -21,7 +21,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from dhsim_tui.core.ik.numerical_problem import _Problem
+from dhsim_tui.core.ik.numerical_problem import IkProblem
 
 #: configurations in a robot's table (a lookup costs a few tens of µs)
 TABLE_SIZE = 4096
@@ -41,7 +41,7 @@ class _Table:
     features: position per reach, and (for whole poses) the rotation
     matrix's entries, by rows."""
 
-    def __init__(self, problem: _Problem) -> None:
+    def __init__(self, problem: IkProblem) -> None:
         robot = problem.robot
         rng = np.random.default_rng(TABLE_SEED)
         lower, upper = np.array(robot.lower), np.array(robot.upper)
@@ -60,7 +60,7 @@ class _Table:
             self.scores[position_only] = np.ascontiguousarray(scores)  # a row per feature
         self.units = [1.0 / problem.scale] * 3 + [ROTATION_WEIGHT] * 9
 
-    def nearest(self, problem: _Problem, count: int) -> Iterator[list[float]]:
+    def nearest(self, problem: IkProblem, count: int) -> Iterator[list[float]]:
         """The ``count`` configurations whose poses are nearest the target's,
         nearest first, one at a time (most solves need the first only)."""
         goal = problem.goal  # position, then the rotation's rows
@@ -79,7 +79,7 @@ class _Table:
             yield self.starts[k].tolist()
 
 
-def nearest_starts(problem: _Problem, count: int) -> Iterator[list[float]]:
+def nearest_starts(problem: IkProblem, count: int) -> Iterator[list[float]]:
     """Up to ``count`` starts from the robot's table, nearest the target first
     (the table is built on first use and kept on the robot's setup)."""
     setup = problem.setup

@@ -2,7 +2,7 @@
 commonest industrial geometry: axes 2 and 3 parallel and a wrist whose axes
 are at right angles (axis 4 ⊥ axis 5 ⊥ axis 6: the Puma 560, the IRB 140).
 
-It gives the same solutions and words as :func:`dhsim_tui.core.ik.wrist._spherical`
+It gives the same solutions and words as :func:`dhsim_tui.core.ik.wrist.solve_spherical_wrist`
 (a test compares the two on random poses and random arms), in about half the
 arithmetic:
 
@@ -28,8 +28,17 @@ import math
 from collections.abc import Callable
 from typing import NamedTuple
 
-from dhsim_tui.core.ik.subproblems import _EPS, DOUBLE_ROOT
-from dhsim_tui.core.ik.vectors import Motion, Vec, _apply, _cross, _dot, _norm, _scale, _sub
+from dhsim_tui.core.ik.subproblems import DOUBLE_ROOT, EPS
+from dhsim_tui.core.ik.vectors import (
+    Motion,
+    Vec,
+    apply_motion,
+    cross_product,
+    dot,
+    norm,
+    scaled,
+    sub,
+)
 
 _RAD = 180.0 / math.pi
 #: two axes count as at right angles when the cosine between them is below this
@@ -73,35 +82,35 @@ def arm_frames(
     parallel, a spherical wrist at ``centre``), or None when its wrist axes are
     not at right angles or a link of the plane is too short (``tol`` × ``size``)."""
     w1, w2, w3, w4, w5, w6 = axes
-    if abs(_dot(w4, w5)) > RIGHT_ANGLE_TOL or abs(_dot(w5, w6)) > RIGHT_ANGLE_TOL:
+    if abs(dot(w4, w5)) > RIGHT_ANGLE_TOL or abs(dot(w5, w6)) > RIGHT_ANGLE_TOL:
         return None
     origin = points[0]
-    c2 = _dot(w2, w1)
-    across = _sub(w2, _scale(w1, c2))
-    s2 = _norm(across)
-    x = _scale(across, 1.0 / s2)
-    y = _cross(w1, x)
+    c2 = dot(w2, w1)
+    across = sub(w2, scaled(w1, c2))
+    s2 = norm(across)
+    x = scaled(across, 1.0 / s2)
+    y = cross_product(w1, x)
     z = w1
 
     def arm(v: Vec) -> Vec:
-        d = _sub(v, origin)
-        return (_dot(x, d), _dot(y, d), _dot(z, d))
+        d = sub(v, origin)
+        return (dot(x, d), dot(y, d), dot(z, d))
 
     def plane(v: Vec) -> tuple[float, float]:
         """A vector's coordinates across axis 2: along y and along axis 2 × y."""
         return (v[1], -c2 * v[0] + s2 * v[2])
 
     shoulder, elbow, wrist = arm(points[1]), arm(points[2]), arm(centre)
-    a = plane(_sub(elbow, shoulder))
-    b = plane(_sub(wrist, elbow))
+    a = plane(sub(elbow, shoulder))
+    b = plane(sub(wrist, elbow))
     length_a, length_b = math.hypot(*a), math.hypot(*b)
     if length_a <= tol * size or length_b <= tol * size:
         return None
     ab_cos = a[0] * b[0] + a[1] * b[1]
     ab_sin = a[1] * b[0] - a[0] * b[1]
     # the wrist frame B: z along axis 4, y along axis 5
-    bx, by, bz = _cross(w5, w4), w5, w4
-    phi = math.atan2(_dot(w6, bx), _dot(w6, bz))
+    bx, by, bz = cross_product(w5, w4), w5, w4
+    phi = math.atan2(dot(w6, bx), dot(w6, bz))
     cp, sp = math.cos(phi), math.sin(phi)
     d0 = tuple(cp * bx[i] - sp * bz[i] for i in range(3))
     d2 = tuple(sp * bx[i] + cp * bz[i] for i in range(3))
@@ -109,10 +118,10 @@ def arm_frames(
     right = []
     for row in range(3):
         m = inverse_rotation[3 * row : 3 * row + 3]
-        right += [_dot(m, d0), _dot(m, by), _dot(m, d2)]
+        right += [dot(m, d0), dot(m, by), dot(m, d2)]
     to_arm = (*x, *y, *z)
-    arm_to_wrist = tuple(_dot(bi, aj) for bi in (bx, by, bz) for aj in (x, y, z))
-    k0, k1, k2 = _dot(bx, w2), _dot(by, w2), _dot(bz, w2)
+    arm_to_wrist = tuple(dot(bi, aj) for bi in (bx, by, bz) for aj in (x, y, z))
+    k0, k1, k2 = dot(bx, w2), dot(by, w2), dot(bz, w2)
     return ArmFrames(
         origin=origin,
         to_arm=to_arm,
@@ -125,8 +134,8 @@ def arm_frames(
         lengths=length_a * length_a + length_b * length_b,
         ab=length_a * length_b,
         ab_phase=math.atan2(ab_sin, ab_cos),
-        sign3=1.0 if _dot(w2, w3) > 0.0 else -1.0,
-        centre_tool=_apply(home_inverse, centre),
+        sign3=1.0 if dot(w2, w3) > 0.0 else -1.0,
+        centre_tool=apply_motion(home_inverse, centre),
         right=tuple(right),
         arm_to_wrist=arm_to_wrist,
         axis2_wrist=(k0, k1, k2, k0 * k0, k0 * k1, k0 * k2, k1 * k1, k1 * k2, k2 * k2),
@@ -136,10 +145,10 @@ def arm_frames(
 
 
 def _roots(a: float, b: float, c: float) -> list[float] | None:
-    """``a cos t + b sin t = c`` as ``_cos_sin_equation`` solves it, or None
+    """``a cos t + b sin t = c`` as ``solve_cos_sin`` solves it, or None
     when ``(a, b)`` is too short to say (the caller decides)."""
     rho = math.hypot(a, b)
-    if rho < _EPS:
+    if rho < EPS:
         return None
     ratio = c / rho
     if abs(ratio) > 1.0 + 1e-12:
@@ -244,7 +253,7 @@ def solve(
         up = s2 * dy
         if up * up <= 1e-18 * (dx * dx + dy * dy + dz * dz):
             up = 1.0
-        p_small = p0 * p0 + p1 * p1 < _EPS
+        p_small = p0 * p0 + p1 * p1 < EPS
         # M = Q Rz(-t1) K
         n0, n1, n2 = c1 * kx0 + s1 * ky0, c1 * kx1 + s1 * ky1, c1 * kx2 + s1 * ky2
         u0, u1, u2 = c1 * ky0 - s1 * kx0, c1 * ky1 - s1 * kx1, c1 * ky2 - s1 * kx2
@@ -261,7 +270,7 @@ def solve(
             c3, s3 = cos(t3p), sin(t3p)
             rb0, rb1 = b0 * c3 - b1 * s3, b0 * s3 + b1 * c3  # R(t3) b
             w0, w1 = a0 + rb0, a1 + rb1  # the wrist centre from the shoulder, at t2 = 0
-            if p_small or w0 * w0 + w1 * w1 < _EPS:
+            if p_small or w0 * w0 + w1 * w1 < EPS:
                 t2 = remainder((preferred[1] - h2) / _RAD, tau)
             else:
                 t2 = atan2(w0 * p1 - w1 * p0, w0 * p0 + w1 * p1)

@@ -1,5 +1,5 @@
 """The rotation vector between two orientations: :func:`rotation_error` on
-numpy matrices, and :func:`_rotation_error`, the same in plain floats for
+numpy matrices, and :func:`rotation_error_floats`, the same in plain floats for
 the numerical solver's inner loop (:mod:`dhsim_tui.core.ik.numerical_descent`).
 """
 
@@ -30,7 +30,7 @@ def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     return axis / np.linalg.norm(axis) * math.pi
 
 
-def _rotation_error(goal: list[float], s: tuple[float, ...]) -> tuple[float, float, float]:
+def rotation_error_floats(goal: list[float], s: tuple[float, ...]) -> tuple[float, float, float]:
     """:func:`rotation_error` of the goal's rows and a state's axes, in plain floats."""
     g00, g01, g02, g10, g11, g12, g20, g21, g22 = goal
     x0, x1, x2, y0, y1, y2, z0, z1, z2 = s[:9]

@@ -52,7 +52,7 @@ def _closed_forms():
     """:mod:`dhsim_tui.core.ik.analytic`, imported at the first pose solved
     rather than when this module loads: the closed forms (the geometry
     detected from the D-H table, the wrist and planar families) are a dozen
-    modules that the simulator's first frame does not need (issue 27)."""
+    modules that the simulator's first frame does not need."""
     from dhsim_tui.core.ik import analytic
 
     return analytic

@@ -35,7 +35,7 @@ import numpy as np
 
 from dhsim_tui.core.analysis.jacobian_codegen import jacobian_parts
 from dhsim_tui.core.ik.codegen_fold import Folder
-from dhsim_tui.core.ik.rotation import _rotation_error
+from dhsim_tui.core.ik.rotation import rotation_error_floats
 from dhsim_tui.core.model.robot import Robot
 
 _STATE9 = "x0, x1, x2, y0, y1, y2, z0, z1, z2"
@@ -55,7 +55,7 @@ def _sum(terms: list[str | None]) -> str:
 
 
 def _rotation_lines(position_only: bool) -> tuple[list[str], list[str]]:
-    """e3 e4 e5: :func:`~dhsim_tui.core.ik.rotation._rotation_error`, written
+    """e3 e4 e5: :func:`~dhsim_tui.core.ik.rotation.rotation_error_floats`, written
     out: the straight lines, then the branches (whose half turn reads the
     state as ``{x0}`` ... ``{z2}``, for the folder's names)."""
     if position_only:
@@ -203,7 +203,7 @@ def descent_source(
     """The source of ``descend(x, goal, max_iter, bias, give_up, free,
     checkpoint, limit) -> (x, error, iterations, converged)`` for the rows
     ``picked`` (weighted by ``weights``); see
-    :func:`dhsim_tui.core.ik.numerical_descent._descend`.
+    :func:`dhsim_tui.core.ik.numerical_descent.levenberg_marquardt`.
 
     ``x`` holds the joint values in internal units, ``goal`` the target's
     position (robot units) then its rotation's rows (9 floats); ``tolerances``
@@ -304,7 +304,7 @@ def compile_to_user(
 def _half_turn(goal: list[float], state: tuple[float, ...]) -> tuple[float, float, float]:
     """The rotation error near a half turn (rare): numpy's, warnings kept quiet."""
     with np.errstate(all="ignore"):
-        return _rotation_error(goal, state)
+        return rotation_error_floats(goal, state)
 
 
 def compile_descent(robot: Robot, **plan) -> Callable:

@@ -15,31 +15,37 @@ Vec = tuple[float, float, float]
 
 # -- 3-vectors as tuples (a pose costs a few hundred of these: numpy's
 #    per-call overhead would dominate) ---------------------------------------
-def _sub(a: Vec, b: Vec) -> Vec:
+def sub(a: Vec, b: Vec) -> Vec:
+    """``a - b``."""
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-def _add(a: Vec, b: Vec) -> Vec:
+def add(a: Vec, b: Vec) -> Vec:
+    """``a + b``."""
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
-def _scale(a: Vec, k: float) -> Vec:
+def scaled(a: Vec, k: float) -> Vec:
+    """``a`` times the number ``k``."""
     return (a[0] * k, a[1] * k, a[2] * k)
 
 
-def _dot(a: Vec, b: Vec) -> float:
+def dot(a: Vec, b: Vec) -> float:
+    """The dot product of ``a`` and ``b``."""
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-def _cross(a: Vec, b: Vec) -> Vec:
+def cross_product(a: Vec, b: Vec) -> Vec:
+    """The cross product ``a × b``."""
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def _norm(a: Vec) -> float:
+def norm(a: Vec) -> float:
+    """The length of ``a``."""
     return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
 
 
-def _rotate(w: Vec, t: float, v: Vec) -> Vec:
+def rotate(w: Vec, t: float, v: Vec) -> Vec:
     """``v`` turned by ``t`` radians about the unit direction ``w`` (Rodrigues)."""
     c, s = math.cos(t), math.sin(t)
     w0, w1, w2 = w
@@ -52,16 +58,17 @@ def _rotate(w: Vec, t: float, v: Vec) -> Vec:
     )
 
 
-def _rotate_about(w: Vec, r: Vec, t: float, p: Vec) -> Vec:
+def rotate_about_line(w: Vec, r: Vec, t: float, p: Vec) -> Vec:
     """Point ``p`` turned by ``t`` about the line through ``r`` along ``w``."""
-    return _add(r, _rotate(w, t, _sub(p, r)))
+    return add(r, rotate(w, t, sub(p, r)))
 
 
 # -- rigid motions as (R rows flat, p) ----------------------------------------
 Motion = tuple[tuple[float, ...], Vec]
 
 
-def _rot_matrix(w: Vec, t: float) -> tuple[float, ...]:
+def rotation_matrix(w: Vec, t: float) -> tuple[float, ...]:
+    """The rotation by ``t`` radians about the unit direction ``w`` (9 numbers, row-major)."""
     c, s = math.cos(t), math.sin(t)
     v = 1.0 - c
     x, y, z = w
@@ -78,7 +85,8 @@ def _rot_matrix(w: Vec, t: float) -> tuple[float, ...]:
     )
 
 
-def _apply(m: Motion, p: Vec) -> Vec:
+def apply_motion(m: Motion, p: Vec) -> Vec:
+    """Point ``p`` moved by the motion ``m`` (rotation, then translation)."""
     r, t = m
     return (
         r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + t[0],
@@ -87,7 +95,8 @@ def _apply(m: Motion, p: Vec) -> Vec:
     )
 
 
-def _turn(r: tuple[float, ...], v: Vec) -> Vec:
+def turn_vector(r: tuple[float, ...], v: Vec) -> Vec:
+    """R v: ``v`` turned by the rotation ``r`` (9 numbers, row-major)."""
     return (
         r[0] * v[0] + r[1] * v[1] + r[2] * v[2],
         r[3] * v[0] + r[4] * v[1] + r[5] * v[2],
@@ -95,7 +104,7 @@ def _turn(r: tuple[float, ...], v: Vec) -> Vec:
     )
 
 
-def _turn_back(r: tuple[float, ...], v: Vec) -> Vec:
+def turn_vector_back(r: tuple[float, ...], v: Vec) -> Vec:
     """R^T v."""
     return (
         r[0] * v[0] + r[3] * v[1] + r[6] * v[2],
@@ -104,7 +113,7 @@ def _turn_back(r: tuple[float, ...], v: Vec) -> Vec:
     )
 
 
-def _mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
+def mul_rotations(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
     """The product of two rotations (9 numbers each, row-major), written out."""
     a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
     b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
@@ -121,7 +130,7 @@ def _mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
     )
 
 
-def _mul_t(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
+def mul_rotations_t(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
     """a^T b for two rotations (9 numbers each, row-major)."""
     a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
     b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
@@ -138,11 +147,13 @@ def _mul_t(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, ...]:
     )
 
 
-def _compose(a: Motion, b: Motion) -> Motion:
-    return (_mul(a[0], b[0]), _apply(a, b[1]))
+def compose_motions(a: Motion, b: Motion) -> Motion:
+    """The motion ``a`` after ``b`` (``a · b``)."""
+    return (mul_rotations(a[0], b[0]), apply_motion(a, b[1]))
 
 
-def _inverse(m: Motion) -> Motion:
+def invert_motion(m: Motion) -> Motion:
+    """The motion that undoes ``m``."""
     r, p = m
     rt = (r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8])
-    return (rt, _scale(_turn(rt, p), -1.0))
+    return (rt, scaled(turn_vector(rt, p), -1.0))

@@ -10,22 +10,28 @@ import math
 from collections.abc import Callable
 
 from dhsim_tui.core.ik.geometry import SPHERICAL_PARALLEL, Geometry
-from dhsim_tui.core.ik.labels import _elbow_world, _label, _shoulder
-from dhsim_tui.core.ik.planar import _planar_fixed
-from dhsim_tui.core.ik.subproblems import _EPS, DOUBLE_ROOT, _cos_sin_equation, _sp2, _sp3
+from dhsim_tui.core.ik.labels import elbow_label_world, joined_label, shoulder_label
+from dhsim_tui.core.ik.planar import planar_at_fixed_point
+from dhsim_tui.core.ik.subproblems import (
+    DOUBLE_ROOT,
+    EPS,
+    solve_cos_sin,
+    turns_to_distance,
+    two_axis_turns,
+)
 from dhsim_tui.core.ik.vectors import (
     Motion,
     Vec,
-    _add,
-    _apply,
-    _dot,
-    _mul,
-    _mul_t,
-    _norm,
-    _rot_matrix,
-    _rotate_about,
-    _scale,
-    _sub,
+    add,
+    apply_motion,
+    dot,
+    mul_rotations,
+    mul_rotations_t,
+    norm,
+    rotate_about_line,
+    rotation_matrix,
+    scaled,
+    sub,
 )
 
 
@@ -61,7 +67,7 @@ def _wrist(g: Geometry, rest: tuple[float, ...], free) -> list[tuple]:
     # v seen across axis 4 (sub-problem 1's projection, independent of the sign)
     bv = a0 * v0 + a1 * v1 + a2 * v2
     pv0, pv1, pv2 = v0 - bv * a0, v1 - bv * a1, v2 - bv * a2
-    v_small = pv0 * pv0 + pv1 * pv1 + pv2 * pv2 < _EPS
+    v_small = pv0 * pv0 + pv1 * pv1 + pv2 * pv2 < EPS
     cos, sin, atan2 = math.cos, math.sin, math.atan2
     e0x, e1x, e2x = px
     out = []
@@ -70,27 +76,27 @@ def _wrist(g: Geometry, rest: tuple[float, ...], free) -> list[tuple]:
         z0 = alpha * a0 + beta * b0 + g3 * k0
         z1 = alpha * a1 + beta * b1 + g3 * k1
         z2 = alpha * a2 + beta * b2 + g3 * k2
-        # t5 = _sp1(w5, w6, z, free[4])
+        # t5 = turn_to_direction(w5, w6, z, free[4])
         p0, p1, p2 = p6  # w6 across axis 5
         bz = b0 * z0 + b1 * z1 + b2 * z2
         q0, q1, q2 = z0 - bz * b0, z1 - bz * b1, z2 - bz * b2
-        if p6_small or q0 * q0 + q1 * q1 + q2 * q2 < _EPS:
+        if p6_small or q0 * q0 + q1 * q1 + q2 * q2 < EPS:
             t5 = free4
         else:
             t5 = atan2(
                 b0 * (p1 * q2 - p2 * q1) + b1 * (p2 * q0 - p0 * q2) + b2 * (p0 * q1 - p1 * q0),
                 p0 * q0 + p1 * q1 + p2 * q2,
             )
-        # u = _rotate(w5, t5, w6)
+        # u = rotate(w5, t5, w6)
         c, s_ = cos(t5), sin(t5)
         k = (b0 * c0 + b1 * c1 + b2 * c2) * (1.0 - c)
         u0 = c0 * c + (b1 * c2 - b2 * c1) * s_ + b0 * k
         u1 = c1 * c + (b2 * c0 - b0 * c2) * s_ + b1 * k
         u2 = c2 * c + (b0 * c1 - b1 * c0) * s_ + b2 * k
-        # t4 = _sp1(w4, u, v, free[3])
+        # t4 = turn_to_direction(w4, u, v, free[3])
         au = a0 * u0 + a1 * u1 + a2 * u2
         u0, u1, u2 = u0 - au * a0, u1 - au * a1, u2 - au * a2
-        if u0 * u0 + u1 * u1 + u2 * u2 < _EPS or v_small:
+        if u0 * u0 + u1 * u1 + u2 * u2 < EPS or v_small:
             t4 = free3
         else:
             t4 = atan2(
@@ -99,7 +105,7 @@ def _wrist(g: Geometry, rest: tuple[float, ...], free) -> list[tuple]:
                 + a2 * (u0 * pv1 - u1 * pv0),
                 u0 * pv0 + u1 * pv1 + u2 * pv2,
             )
-        # left = _rotate(w5, -t5, _rotate(w4, -t4, y))
+        # left = rotate(w5, -t5, rotate(w4, -t4, y))
         c, s_ = cos(-t4), sin(-t4)
         k = (a0 * y0 + a1 * y1 + a2 * y2) * (1.0 - c)
         e0 = y0 * c + (a1 * y2 - a2 * y1) * s_ + a0 * k
@@ -110,10 +116,10 @@ def _wrist(g: Geometry, rest: tuple[float, ...], free) -> list[tuple]:
         f0 = e0 * c + (b1 * e2 - b2 * e1) * s_ + b0 * k
         f1 = e1 * c + (b2 * e0 - b0 * e2) * s_ + b1 * k
         f2 = e2 * c + (b0 * e1 - b1 * e0) * s_ + b2 * k
-        # t6 = _sp1(w6, x, left, free[5])
+        # t6 = turn_to_direction(w6, x, left, free[5])
         bf = c0 * f0 + c1 * f1 + c2 * f2
         f0, f1, f2 = f0 - bf * c0, f1 - bf * c1, f2 - bf * c2
-        if x_small or f0 * f0 + f1 * f1 + f2 * f2 < _EPS:
+        if x_small or f0 * f0 + f1 * f1 + f2 * f2 < EPS:
             t6 = free5
         else:
             t6 = atan2(
@@ -131,18 +137,20 @@ def _arm_rotation(
 ) -> tuple[float, ...]:
     """The rotation of joints 1-3, as 9 numbers (row-major); ``first``: joint
     1's, when known."""
-    r = _rot_matrix(g.axes[0], t1) if first is None else first
+    r = rotation_matrix(g.axes[0], t1) if first is None else first
     if g.kind == SPHERICAL_PARALLEL:  # axes 2 and 3 parallel: one turn of t2 ± t3
-        t = t2 + t3 if _dot(g.axes[1], g.axes[2]) > 0 else t2 - t3
-        return _mul(r, _rot_matrix(g.axes[1], t))
+        t = t2 + t3 if dot(g.axes[1], g.axes[2]) > 0 else t2 - t3
+        return mul_rotations(r, rotation_matrix(g.axes[1], t))
     for axis, t in ((1, t2), (2, t3)):
         if g.revolute[axis]:
-            r = _mul(r, _rot_matrix(g.axes[axis], t))
+            r = mul_rotations(r, rotation_matrix(g.axes[axis], t))
     return r
 
 
-def _spherical(g: Geometry, goal: Motion, free, fits: Callable) -> list[tuple]:
-    centre = _apply(goal, g.centre)  # where the wrist centre must go
+def solve_spherical_wrist(g: Geometry, goal: Motion, free, fits: Callable) -> list[tuple]:
+    """The closed form for a spherical wrist (axes 4, 5, 6 meet): each solution
+    that ``fits``, with its label."""
+    centre = apply_motion(goal, g.centre)  # where the wrist centre must go
     out = []
     goal_rotation = goal[0]
     singular = g.wrist_singular
@@ -153,11 +161,11 @@ def _spherical(g: Geometry, goal: Motion, free, fits: Callable) -> list[tuple]:
         if not fits(t1, t2, t3):
             continue
         if t1 != last_t1:
-            last_t1, first = t1, _rot_matrix(g.axes[0], t1)
-        rest = _mul_t(_arm_rotation(g, t1, t2, t3, first), goal_rotation)
-        arm_words = _label(shoulder_word, elbow_word)
+            last_t1, first = t1, rotation_matrix(g.axes[0], t1)
+        rest = mul_rotations_t(_arm_rotation(g, t1, t2, t3, first), goal_rotation)
+        arm_words = joined_label(shoulder_word, elbow_word)
         for t4, t5, t6 in _wrist(g, rest, free):
-            # _label(shoulder_word, elbow_word, _flip(g, t5)), written out
+            # joined_label(shoulder_word, elbow_word, flip_label(g, t5)), written out
             if no_flip:
                 flip = "wrist no flip" if sin(t5 - singular) <= 0.0 else "wrist flip"
                 words = f"{arm_words}, {flip}" if arm_words else flip
@@ -177,28 +185,28 @@ def _position(g: Geometry, centre: Vec, free) -> list[tuple]:
     out = []
     # axes 1 and 2 meet at o: joints 1 and 2 keep the distance from o
     o = g.meeting
-    distance = _norm(_sub(centre, o))
+    distance = norm(sub(centre, o))
     if g.revolute[2]:
-        slides = _sp3(w3, r3, g.centre, o, distance, free[2])
-        moved = [(t3, _rotate_about(w3, r3, t3, g.centre)) for t3 in slides]
+        slides = turns_to_distance(w3, r3, g.centre, o, distance, free[2])
+        moved = [(t3, rotate_about_line(w3, r3, t3, g.centre)) for t3 in slides]
     else:
         # |centre0 + t w3 - o|^2 = distance^2: a quadratic in t
-        u = _sub(g.centre, o)
-        b = _dot(w3, u)
-        disc = b * b - (_dot(u, u) - distance * distance)
+        u = sub(g.centre, o)
+        b = dot(w3, u)
+        disc = b * b - (dot(u, u) - distance * distance)
         if disc < -1e-10 * g.reach * g.reach:
             return []
         root = math.sqrt(max(disc, 0.0))
         ts = [-b + root, -b - root] if root > DOUBLE_ROOT * g.reach else [-b]
-        moved = [(t, _add(g.centre, _scale(w3, t))) for t in ts]
+        moved = [(t, add(g.centre, scaled(w3, t))) for t in ts]
     for t3, point in moved:
         if g.revolute[2]:
             word = ""
         else:  # the slide's two roots put the wrist centre ahead of o or behind it
-            word = "arm forward" if _dot(_sub(point, o), w3) >= 0.0 else "arm reversed"
-        for t1, t2 in _sp2(w1, w2, _sub(point, o), _sub(centre, o), (free[0], free[1])):
-            words = _elbow_world(g, t1, t2, centre) if g.revolute[2] else word
-            out.append((t1, t2, t3, words, _shoulder(g, t1, centre)))
+            word = "arm forward" if dot(sub(point, o), w3) >= 0.0 else "arm reversed"
+        for t1, t2 in two_axis_turns(w1, w2, sub(point, o), sub(centre, o), (free[0], free[1])):
+            words = elbow_label_world(g, t1, t2, centre) if g.revolute[2] else word
+            out.append((t1, t2, t3, words, shoulder_label(g, t1, centre)))
     return out
 
 
@@ -213,11 +221,11 @@ def _position_parallel(g: Geometry, centre: Vec, free) -> list[tuple]:
     s0, s1, s2 = g.points[1]
     t0, t1_, t2_ = g.points[2]
     cos, sin, sqrt = math.cos, math.sin, math.sqrt
-    # _height_turns(w1, r1, centre, w2, height, -free[0])
+    # turns_to_height(w1, r1, centre, w2, height, -free[0])
     h0, h1, h2 = centre[0] - r1[0], centre[1] - r1[1], centre[2] - r1[2]
     along = a0 * h0 + a1 * h1 + a2 * h2
     p0, p1, p2 = h0 - a0 * along, h1 - a1 * along, h2 - a2 * along
-    roots = _cos_sin_equation(
+    roots = solve_cos_sin(
         b0 * p0 + b1 * p1 + b2 * p2,
         b0 * (a1 * p2 - a2 * p1) + b1 * (a2 * p0 - a0 * p2) + b2 * (a0 * p1 - a1 * p0),
         height - dnr - along * dnw,
@@ -226,18 +234,18 @@ def _position_parallel(g: Geometry, centre: Vec, free) -> list[tuple]:
     out = []
     for minus_t1 in roots:
         t1 = -minus_t1
-        # seen = _rotate_about(w1, r1, minus_t1, centre): in the arm's home plane
+        # seen = rotate_about_line(w1, r1, minus_t1, centre): in the arm's home plane
         c, s_ = cos(minus_t1), sin(minus_t1)
         k = along * (1.0 - c)
         e0 = r1[0] + (h0 * c + (a1 * h2 - a2 * h1) * s_ + a0 * k)
         e1 = r1[1] + (h1 * c + (a2 * h0 - a0 * h2) * s_ + a1 * k)
         e2 = r1[2] + (h2 * c + (a0 * h1 - a1 * h0) * s_ + a2 * k)
-        planar = _planar_fixed(g, e0, e1, e2, free)
+        planar = planar_at_fixed_point(g, e0, e1, e2, free)
         if not planar:
             continue
         # what depends on joint 1 alone: axis 2's direction, the shoulder and the
         # line from it to the wrist centre
-        # (each a turn about axis 1 by t1: _rotate written out)
+        # (each a turn about axis 1 by t1: rotate written out)
         c, s_ = cos(t1), sin(t1)
         one_c = 1.0 - c
         k = (a0 * b0 + a1 * b1 + a2 * b2) * one_c
@@ -249,16 +257,16 @@ def _position_parallel(g: Geometry, centre: Vec, free) -> list[tuple]:
         sh0 = r1[0] + (v0 * c + (a1 * v2 - a2 * v1) * s_ + a0 * k)
         sh1 = r1[1] + (v1 * c + (a2 * v0 - a0 * v2) * s_ + a1 * k)
         sh2 = r1[2] + (v2 * c + (a0 * v1 - a1 * v0) * s_ + a2 * k)
-        # _shoulder: which side of the plane of axes 1 and 2 the wrist centre is
+        # shoulder_label: which side of the plane of axes 1 and 2 the wrist centre is
         side = (a1 * w22 - a2 * w21) * h0 + (a2 * w20 - a0 * w22) * h1 + (a0 * w21 - a1 * w20) * h2
         shoulder_word = "shoulder right" if side >= 0.0 else "shoulder left"
-        # _elbow: the line from the shoulder to the wrist centre, and "up"
+        # elbow_label: the line from the shoulder to the wrist centre, and "up"
         l0, l1, l2 = centre[0] - sh0, centre[1] - sh1, centre[2] - sh2
         up = a0 * (w21 * l2 - w22 * l1) + a1 * (w22 * l0 - w20 * l2) + a2 * (w20 * l1 - w21 * l0)
         if abs(up) <= 1e-9 * sqrt(l0 * l0 + l1 * l1 + l2 * l2):
             up = 1.0
         for t2, t3 in planar:
-            # elbow = _rotate_about(w1, r1, t1, _rotate_about(w2, r2, t2, r3))
+            # elbow = rotate_about_line(w1, r1, t1, rotate_about_line(w2, r2, t2, r3))
             cb, sb = cos(t2), sin(t2)
             v0, v1, v2 = t0 - s0, t1_ - s1, t2_ - s2
             k = (b0 * v0 + b1 * v1 + b2 * v2) * (1.0 - cb)

@@ -1,7 +1,8 @@
 """Standard ⇄ modified D-H for a whole robot (``dhsim convert``).
 
 The two conventions place the same (a, alpha) pairs one row apart
-(reference §1): standard row i holds a_i, alpha_i after its joint, modified
+(kinematics reference section 1, the D-H conventions):
+standard row i holds a_i, alpha_i after its joint, modified
 row i holds a_{i-1}, alpha_{i-1} before it. So a conversion shifts those
 pairs and moves the one left over into the tool or the base:
 

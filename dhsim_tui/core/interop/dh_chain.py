@@ -82,8 +82,8 @@ class DHChain:
             raise DhsimError(
                 f"D-H convention {self.convention!r}: expected 'standard' or 'modified'"
             )
-        object.__setattr__(self, "base", _rigid(self.base, "base"))
-        object.__setattr__(self, "tool", _rigid(self.tool, "tool"))
+        object.__setattr__(self, "base", checked_rigid(self.base, "base"))
+        object.__setattr__(self, "tool", checked_rigid(self.tool, "tool"))
         object.__setattr__(self, "rows", tuple(self.rows))
 
     def frames(self, q: Sequence[float]) -> list[np.ndarray]:
@@ -159,7 +159,7 @@ def convert(chain: DHChain, convention: str) -> DHChain:
         a_n, alpha_n = tool_link(chain.tool, PEEL_TOL * size)
         pairs = [(r.a, r.alpha) for r in rows[1:]] + [(a_n, alpha_n)]
         base = chain.base @ link_matrix("modified", 0.0, 0.0, rows[0].a, rows[0].alpha)
-        tool = _inverse(link_matrix("standard", 0.0, 0.0, a_n, alpha_n)) @ chain.tool
+        tool = invert_transform(link_matrix("standard", 0.0, 0.0, a_n, alpha_n)) @ chain.tool
     new_rows = tuple(
         DHRow(r.kind, r.theta, r.d, a, alpha, r.offset)
         for r, (a, alpha) in zip(rows, pairs, strict=True)
@@ -175,15 +175,16 @@ def tool_link(tool: np.ndarray, tol: float) -> tuple[float, float]:
     z, o = tool[:3, 2], tool[:3, 3]
     if abs(float(z[0])) > PEEL_TOL or abs(float(o[1] * z[2] - o[2] * z[1])) > tol:
         return 0.0, 0.0
-    return float(o[0]), _wrap(math.atan2(-float(z[1]), float(z[2])))
+    return float(o[0]), wrap_angle(math.atan2(-float(z[1]), float(z[2])))
 
 
-def _wrap(angle: float) -> float:
+def wrap_angle(angle: float) -> float:
     """-π (from a -0.0) as π, so angles lie in (-π, π]."""
     return math.pi if angle <= -math.pi else angle
 
 
-def _inverse(t: np.ndarray) -> np.ndarray:
+def invert_transform(t: np.ndarray) -> np.ndarray:
+    """The inverse of the rigid 4×4 transform ``t``."""
     out = np.eye(4)
     out[:3, :3] = t[:3, :3].T
     out[:3, 3] = -t[:3, :3].T @ t[:3, 3]
@@ -202,7 +203,9 @@ def _joint_values(q: Sequence[float], n: int) -> list[float]:
     return values
 
 
-def _rigid(matrix: np.ndarray, name: str) -> np.ndarray:
+def checked_rigid(matrix: np.ndarray, name: str) -> np.ndarray:
+    """``matrix`` as a float 4×4 array; a :class:`DhsimError` naming ``name`` if
+    it is not a finite rigid transform."""
     m = np.array(matrix, dtype=float)
     if m.shape != (4, 4) or not np.all(np.isfinite(m)):
         raise DhsimError(f"{name}: expected a finite 4×4 transform")

@@ -7,7 +7,8 @@ with every joint at q = 0, and the tip's pose at q = 0. Joint i turns about
 of exponentials ``FK(q) = exp(ξ_1 q_1) ··· exp(ξ_n q_n) · tip_home``
 (radians and the input's length unit).
 
-:func:`extract` places the classic D-H frames on those lines (reference §1):
+:func:`extract` places the classic D-H frames on those lines (the D-H conventions,
+kinematics reference section 1):
 in the standard convention frame i-1's z axis is joint i's axis, its x axis
 the common normal from joint i-1's axis to joint i's; the base transform
 absorbs where the first axis is and how it is turned, the tool the rest.
@@ -64,11 +65,11 @@ from dhsim_tui.core.interop.dh_chain import (
     KINDS,
     DHChain,
     DHRow,
-    _inverse,
-    _rigid,
-    _wrap,
+    checked_rigid,
     convert,
+    invert_transform,
     link_matrix,
+    wrap_angle,
 )
 from dhsim_tui.core.model.errors import DhsimError
 
@@ -121,7 +122,7 @@ def extract(
     if not 0.0 <= parallel_tol < 1.0:
         raise DhsimError(f"parallel tolerance {parallel_tol!r}: expected 0 <= tol < 1")
     forced = set(parallel)
-    tip = _rigid(tip_home, "tip pose")
+    tip = checked_rigid(tip_home, "tip pose")
     axes = _axes(lines)
     scale = max(
         [1.0, float(np.linalg.norm(tip[:3, 3]))]
@@ -160,7 +161,7 @@ def extract(
         rows.append(DHRow(kind, theta, d, a, alpha, offset))
         frame = frame @ link_matrix("standard", theta, d, a, alpha)
 
-    tool = _inverse(frame) @ tip
+    tool = invert_transform(frame) @ tip
     chain = DHChain("standard", base, tuple(rows), tool)
     return convert(chain, convention)
 
@@ -213,13 +214,13 @@ def _next_link(
     else:  # intersecting
         x = -normal if float(normal @ prefer) < -1e-9 else normal
         a = 0.0
-    alpha = _wrap(math.atan2(float(cross @ x), float(z @ w)))
+    alpha = wrap_angle(math.atan2(float(cross @ x), float(z @ w)))
     return _angle(x_prev, x, z), d, a, alpha
 
 
 def _angle(x_from: np.ndarray, x_to: np.ndarray, z: np.ndarray) -> float:
     """The angle about z from x_from to x_to (both perpendicular to z)."""
-    return _wrap(math.atan2(float(np.cross(x_from, x_to) @ z), float(x_from @ x_to)))
+    return wrap_angle(math.atan2(float(np.cross(x_from, x_to) @ z), float(x_from @ x_to)))
 
 
 def _foot(point: np.ndarray, p: np.ndarray, w: np.ndarray) -> np.ndarray:

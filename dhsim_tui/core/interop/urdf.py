@@ -1,4 +1,4 @@
-"""A serial chain read from a URDF: the groundwork for ``dhsim import`` (issue 10).
+"""A serial chain read from a URDF: what ``dhsim import`` turns into a D-H table.
 
 :func:`read_chain` walks the link tree of a URDF from its root (or ``base``)
 to ``tip`` and keeps the joints on that path, in order: fixed, revolute,
@@ -56,9 +56,15 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from dhsim_tui.core.interop.imported import quoted
-from dhsim_tui.core.interop.urdf_chain import UrdfChain, UrdfJoint, _matrix, rpy_matrix
-from dhsim_tui.core.interop.urdf_tree import _check_tree, _hint, _joints, _links, _only_leaf
-from dhsim_tui.core.interop.urdf_xml import _parse
+from dhsim_tui.core.interop.urdf_chain import UrdfChain, UrdfJoint, frozen_matrix, rpy_matrix
+from dhsim_tui.core.interop.urdf_tree import (
+    check_tree,
+    joint_edges,
+    link_names,
+    links_hint,
+    only_leaf,
+)
+from dhsim_tui.core.interop.urdf_xml import parse_urdf
 from dhsim_tui.core.model.errors import DhsimError, TipNeeded
 from dhsim_tui.core.model.text import printable
 from dhsim_tui.core.model.units import MAX_ABS, MAX_JOINTS, MIN_JOINTS
@@ -108,20 +114,20 @@ def read_chain(
 
 
 def _read_chain(text: str, tip: str | None, base: str | None) -> UrdfChain:
-    robot, stored = _parse(text)
-    links = _links(robot)
-    joints = _joints(robot, links)
+    robot, stored = parse_urdf(text)
+    links = link_names(robot)
+    joints = joint_edges(robot, links)
     parent_joint = {j.child: j for j in joints}
-    _check_tree(links, joints, parent_joint)
+    check_tree(links, joints, parent_joint)
     known = set(links)
     if base is None:
         base = next(link for link in links if link not in parent_joint)
     elif base not in known:
-        raise DhsimError(f"base: no link named {quoted(base)}{_hint(links)}")
+        raise DhsimError(f"base: no link named {quoted(base)}{links_hint(links)}")
     if tip is None:
-        tip = _only_leaf(base, links, joints)
+        tip = only_leaf(base, links, joints)
     elif tip not in known:
-        raise DhsimError(f"tip: no link named {quoted(tip)}{_hint(links)}")
+        raise DhsimError(f"tip: no link named {quoted(tip)}{links_hint(links)}")
     path = []
     moving = 0
     link = tip
@@ -187,8 +193,8 @@ def _joint(name: str, element: ET.Element) -> UrdfJoint:
     return UrdfJoint(
         name=name,
         kind=kind,
-        origin=_matrix(origin),
-        axis=_matrix(axis),
+        origin=frozen_matrix(origin),
+        axis=frozen_matrix(axis),
         lower=lower,
         upper=upper,
         continuous=urdf_type == "continuous",

@@ -2,7 +2,7 @@
 axes a hair from parallel (a URDF writing π/2 as ``1.570796327`` leaves
 consecutive axes some 1e-10 rad apart; as skew lines their common normal
 would lie ~1e9 m away) are tried as parallel, each run of them turned to
-its mean direction (:class:`_Plan`): every pair less than
+its mean direction (:class:`AxisPlan`): every pair less than
 :data:`PARALLEL_TRY` from parallel, or only those whose common normal lies
 more than :data:`FAR` times the arm's size away. Also the notes such pairs
 get, and the words of a refusal when no D-H table passes the check.
@@ -33,7 +33,7 @@ FAR = 10.0
 _Pair = tuple[int, float, float, int | None]
 
 
-def _pairs(lines, tip_home: np.ndarray) -> list[_Pair]:
+def axis_pairs(lines, tip_home: np.ndarray) -> list[_Pair]:
     """Each consecutive pair of axes, the last joint's with the tip's z axis:
     the sine of their angle and how far along the first axis their common
     normal lies (inf when parallel)."""
@@ -49,13 +49,13 @@ def _pairs(lines, tip_home: np.ndarray) -> list[_Pair]:
     return out
 
 
-def _size(lines, tip_home: np.ndarray) -> float:
+def arm_size(lines, tip_home: np.ndarray) -> float:
     """A length the size of the arm (m): its farthest axis point or the tip."""
     points = [tip_home[:3, 3], *(p for _, p, _ in lines)]
     return max(1e-3, *(float(np.linalg.norm(p)) for p in points))
 
 
-class _Plan:
+class AxisPlan:
     """Which consecutive axes to take as parallel (``parallel``: the number of
     each pair's first joint; the last joint's pairs it with the tip's z axis),
     and the axis lines that makes: each run of joints taken as parallel turns
@@ -69,9 +69,9 @@ class _Plan:
         self.parallel: set[int] = set()
         self.length_tol = length_tol
 
-    def with_pair(self, number: int) -> _Plan:
+    def with_pair(self, number: int) -> AxisPlan:
         """This plan with the pair after joint ``number`` taken as parallel too."""
-        plan = _Plan(self.source, LENGTH_TRY)
+        plan = AxisPlan(self.source, LENGTH_TRY)
         plan.parallel = {*self.parallel, number}
         plan._snap()
         return plan
@@ -118,7 +118,7 @@ class _Plan:
                 self.lines[i] = (kind, point, sign * mean)
 
 
-def _refusal(pairs: list[_Pair], failures: list[str]) -> str:
+def refusal_message(pairs: list[_Pair], failures: list[str]) -> str:
     """Why no D-H table passed: what the skew (last) try gave, the nearly
     parallel pair whose common normal lies farthest, and what taking pairs
     as parallel gave, if that was tried."""
@@ -153,12 +153,12 @@ def _skew_note(pair: _Pair) -> str:
     )
 
 
-def _pair_notes(
+def pair_notes(
     pairs: list[_Pair], parallel: frozenset[int], lines, tip_home: np.ndarray
 ) -> list[str]:
     """Nearly parallel pairs: taken as parallel, or kept skew with their
     common normal far off the arm."""
-    size = _size(lines, tip_home)
+    size = arm_size(lines, tip_home)
     notes = []
     for pair in pairs:
         first, sine, far, _ = pair

@@ -15,7 +15,8 @@ import numpy as np
 from dhsim_tui.core.model.errors import DhsimError
 
 
-def _matrix(values: np.ndarray) -> np.ndarray:
+def frozen_matrix(values: np.ndarray) -> np.ndarray:
+    """``values`` as a read-only float array."""
     array = np.array(values, dtype=float)
     array.setflags(write=False)
     return array

@@ -1,7 +1,7 @@
 """The check of a robot imported from a URDF against the URDF's own forward
 kinematics (:mod:`dhsim_tui.core.interop.urdf_import`): the URDF's tip poses
 at the home and at :data:`CHECKS` seeded random joint values
-(:class:`_Reference`), the largest difference from the robot's tool pose,
+(:class:`UrdfReference`), the largest difference from the robot's tool pose,
 the tolerance it must meet (:data:`MATCH_TOL`) and the note that reports it;
 also the header's lines naming the chain's moving joints, which a restored
 robot (:mod:`dhsim_tui.core.interop.urdf_restore`) and an imported one share.
@@ -28,7 +28,7 @@ CHECKS = 200
 SEED = 20101
 
 
-class _Reference:
+class UrdfReference:
     """The URDF's tip poses at the check's joint vectors (the home and
     :data:`CHECKS` seeded random ones within the limits), computed once."""
 
@@ -52,7 +52,7 @@ class _Reference:
         return position <= self.position_tol - MATCH_TOL + tol and rotation <= tol
 
     @classmethod
-    def of(cls, chain: UrdfChain, robot: Robot, count: int = CHECKS) -> _Reference:
+    def of(cls, chain: UrdfChain, robot: Robot, count: int = CHECKS) -> UrdfReference:
         revolute = [j.is_revolute for j in robot.joints]
         return cls(chain, robot.lower, robot.upper, robot.home, revolute, robot.units, count)
 
@@ -69,17 +69,19 @@ def max_difference(robot: Robot, chain: UrdfChain, count: int = CHECKS) -> tuple
     """The largest position (m) and rotation (rad) difference between the
     robot's tool pose and the URDF's tip pose, at home and at ``count``
     seeded random joint values within the limits."""
-    return _Reference.of(chain, robot, count).difference(robot)
+    return UrdfReference.of(chain, robot, count).difference(robot)
 
 
-def _checked(position: float, rotation: float) -> str:
+def checked_note(position: float, rotation: float) -> str:
+    """The note saying how closely the tool's pose matches the URDF's."""
     return (
         f"checked at home and {CHECKS} random joint values: the tool's pose matches the "
         f"URDF to {position:.0e} m and {rotation:.0e} rad"
     )
 
 
-def _joint_lines(chain: UrdfChain) -> list[str]:
+def joint_name_lines(chain: UrdfChain) -> list[str]:
+    """One line per moving joint: its number, name and kind."""
     return [
         f"joint {i}: {shortened(printable(j.name))} ({j.kind})"
         for i, j in enumerate(chain.moving, start=1)

@@ -20,7 +20,7 @@ import's notes, and a difference above 1e-9 m or 1e-9 rad is refused.
 Axes a hair from parallel (a URDF writing π/2 as ``1.570796327`` leaves
 consecutive axes some 1e-10 rad apart; as skew lines their common normal
 would lie ~1e9 m away) are first taken as parallel, each run of them turned
-to its mean direction (:class:`~dhsim_tui.core.interop.urdf_axes._Plan`):
+to its mean direction (:class:`~dhsim_tui.core.interop.urdf_axes.AxisPlan`):
 every pair less than :data:`~dhsim_tui.core.interop.urdf_axes.PARALLEL_TRY`
 from parallel, then only those whose common normal lies far off the arm.
 The first of these D-H tables that passes the check is kept (a note names
@@ -65,11 +65,18 @@ from dhsim_tui.core.interop.convert import parts, tidy
 from dhsim_tui.core.interop.dh_chain import DHChain
 from dhsim_tui.core.interop.imported import ImportResult, check_choice, quoted
 from dhsim_tui.core.interop.urdf import read_chain
-from dhsim_tui.core.interop.urdf_axes import LENGTH_TRY, _pair_notes, _pairs, _Plan, _refusal, _size
+from dhsim_tui.core.interop.urdf_axes import (
+    LENGTH_TRY,
+    AxisPlan,
+    arm_size,
+    axis_pairs,
+    pair_notes,
+    refusal_message,
+)
 from dhsim_tui.core.interop.urdf_chain import UrdfChain
-from dhsim_tui.core.interop.urdf_check import _checked, _joint_lines, _Reference
-from dhsim_tui.core.interop.urdf_restore import _restore
-from dhsim_tui.core.interop.urdf_rounding import _limits, _round, _rounding_notes
+from dhsim_tui.core.interop.urdf_check import UrdfReference, checked_note, joint_name_lines
+from dhsim_tui.core.interop.urdf_restore import restore_stored_robot
+from dhsim_tui.core.interop.urdf_rounding import rounded_limits, rounded_robot, rounding_notes
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import CONVENTIONS, UNITS, Joint, Robot, Tool
 from dhsim_tui.core.model.text import printable, shortened
@@ -101,7 +108,7 @@ def from_urdf(
     chain = read_chain(text, tip=tip, base=base, source=source)
     remarks: list[str] = []
     if chain.stored is not None:
-        restored = _restore(chain, source, convention, units, name)
+        restored = restore_stored_robot(chain, source, convention, units, name)
         if isinstance(restored, ImportResult):
             return restored
         remarks.append(restored)
@@ -117,12 +124,12 @@ def _import(
 ) -> ImportResult:
     lines = chain.joint_lines()
     tip_home = chain.tip_home()
-    pairs = _pairs(lines, tip_home)
+    pairs = axis_pairs(lines, tip_home)
     scale = 1000.0 / UNITS[units]  # metres -> units
-    limits = [_limits(j, scale) for j in chain.moving]
+    limits = [rounded_limits(j, scale) for j in chain.moving]
     homes = [0.0 if low <= 0.0 <= high else (low + high) / 2 for low, high in limits]
     kinds = [j.kind for j in chain.moving]
-    reference = _Reference(
+    reference = UrdfReference(
         chain,
         [lo for lo, _ in limits],
         [hi for _, hi in limits],
@@ -135,16 +142,16 @@ def _import(
     def build(values: list[float]) -> Robot:
         return _assemble(values, kinds, limits, homes, units, convention, robot_name)
 
-    size = _size(lines, tip_home)
-    every, far = _Plan(lines, LENGTH_TRY), _Plan(lines, LENGTH_TRY)
+    size = arm_size(lines, tip_home)
+    every, far = AxisPlan(lines, LENGTH_TRY), AxisPlan(lines, LENGTH_TRY)
     every.take_pairs_as_parallel(tip_home, size, far_only=False)
     far.take_pairs_as_parallel(tip_home, size, far_only=True)
     plans = [every] if every.parallel else []
     if far.parallel and far.parallel != every.parallel:
         plans.append(far)
-    plans.append(_Plan(lines))
+    plans.append(AxisPlan(lines))
 
-    def attempt(plan: _Plan) -> tuple[Robot, _Plan, list[float], list[bool]] | str:
+    def attempt(plan: AxisPlan) -> tuple[Robot, AxisPlan, list[float], list[bool]] | str:
         """The plan's robot and numbers if it passes the check, else why not."""
         values, lengths = _values(plan.extract(tip_home, convention), units)
         try:
@@ -156,7 +163,7 @@ def _import(
             return robot, plan, values, lengths
         return f"the tool is off by {position:.1e} m, {rotation:.1e} rad"
 
-    chosen: tuple[Robot, _Plan, list[float], list[bool]] | None = None
+    chosen: tuple[Robot, AxisPlan, list[float], list[bool]] | None = None
     failures = []
     for plan in plans:
         outcome = attempt(plan)
@@ -166,21 +173,21 @@ def _import(
             chosen = outcome
             break
     if chosen is None:
-        raise DhsimError(printable(f"{source}: {_refusal(pairs, failures)}"))
+        raise DhsimError(printable(f"{source}: {refusal_message(pairs, failures)}"))
     # the pairs not all taken as parallel at once: each one that keeps the match
     for number in sorted(every.parallel - chosen[1].parallel):
         outcome = attempt(chosen[1].with_pair(number))
         if not isinstance(outcome, str):
             chosen = outcome
     robot, plan, values, lengths = chosen
-    robot, eps = _round(robot, values, lengths, units, build, reference)
+    robot, eps = rounded_robot(robot, values, lengths, units, build, reference)
     position, rotation = reference.difference(robot)
     notes = [
         f"{robot.dof} joints from link {quoted(chain.base, 60)} to link "
         f"{quoted(chain.tip, 60)}, {convention} D-H, lengths in {units}",
-        _checked(position, rotation),
-        *_rounding_notes(eps),
-        *_pair_notes(pairs, plan.parallel, lines, tip_home),
+        checked_note(position, rotation),
+        *rounding_notes(eps),
+        *pair_notes(pairs, plan.parallel, lines, tip_home),
         *_near_round(robot),
         *([f"the robot's name is cut to {MAX_NAME} characters"] if cut else []),
     ]
@@ -189,7 +196,7 @@ def _import(
         f"({shortened(printable(chain.name)) or 'no name'}): link {shortened(chain.base)} to "
         f"link {shortened(chain.tip)}, {convention} D-H.",
         f"Joint values equal the URDF's ({_unit_words(units)}): D-H variable = q + offset.",
-        *_joint_lines(chain),
+        *joint_name_lines(chain),
     )
     return ImportResult(
         robot, tuple(printable(n) for n in notes), tuple(printable(h) for h in header)

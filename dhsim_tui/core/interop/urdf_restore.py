@@ -3,7 +3,7 @@ the robot held in its ``dhsim-robot`` comment
 (:mod:`dhsim_tui.core.interop.urdf_export`) read back (:func:`_stored_robot`),
 compared with the URDF's joints (:func:`_mismatch`: the same joints, kinds
 and limits, and the same forward kinematics), and given back exactly when
-it still matches (:func:`_restore`), else a remark saying why not.
+it still matches (:func:`restore_stored_robot`), else a remark saying why not.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from dhsim_tui.core.files.programschema import programs_from_data
 from dhsim_tui.core.interop.convert import convert
 from dhsim_tui.core.interop.imported import ImportResult, quoted
 from dhsim_tui.core.interop.urdf_chain import UrdfChain
-from dhsim_tui.core.interop.urdf_check import _checked, _joint_lines, _Reference
+from dhsim_tui.core.interop.urdf_check import UrdfReference, checked_note, joint_name_lines
 from dhsim_tui.core.interop.urdf_export import (
     STORED_FORMAT,
     STORED_JOINT_FIELDS,
@@ -31,7 +31,7 @@ from dhsim_tui.core.model.robot import MAX_ABS, MAX_JOINTS, UNITS, Joint, Robot,
 from dhsim_tui.core.model.text import counted, printable, shortened
 
 
-def _restore(
+def restore_stored_robot(
     chain: UrdfChain, source: str, convention: str | None, units: str | None, name: str | None
 ) -> ImportResult | str:
     """The robot stored in the file's dhsim comment, if it still matches the
@@ -67,7 +67,7 @@ def _restore(
             robot = replace(robot, name=printable(name).strip() or robot.name)
     except DhsimError as exc:
         raise DhsimError(printable(f"{source}: {exc}")) from None
-    reference = _Reference.of(chain, robot)
+    reference = UrdfReference.of(chain, robot)
     position, rotation = reference.difference(robot)
     if not reference.matches(position, rotation):  # a conversion lost the match
         raise DhsimError(
@@ -76,13 +76,13 @@ def _restore(
                 f"{position:.1e} m, {rotation:.1e} rad"
             )
         )
-    notes.append(_checked(position, rotation))
+    notes.append(checked_note(position, rotation))
     header = (
         f"Imported by dhsim from {Path(source).name} ({shortened(robot.name)}): the robot "
         f"dhsim exported to it, restored from its {DHSIM_COMMENT} comment.",
         f"Checked against the URDF's joints from link {shortened(chain.base)} to link "
         f"{shortened(chain.tip)}: they still match.",
-        *_joint_lines(chain),
+        *joint_name_lines(chain),
     )
     return ImportResult(
         robot, tuple(printable(n) for n in notes), tuple(printable(h) for h in header)
@@ -178,7 +178,7 @@ def _mismatch(robot: Robot, chain: UrdfChain) -> str | None:
             for a, b in zip(ours, (theirs.lower, theirs.upper), strict=True)
         ):
             return f"joint {number}'s limits differ"
-    reference = _Reference.of(chain, robot)
+    reference = UrdfReference.of(chain, robot)
     position, rotation = reference.difference(robot)
     if not reference.matches(position, rotation):
         return f"the tool is off by {position:.1e} m and {rotation:.1e} rad"

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from dhsim_tui.core.interop.urdf_check import MATCH_TOL, _Reference
+from dhsim_tui.core.interop.urdf_check import MATCH_TOL, UrdfReference
 from dhsim_tui.core.model.errors import DhsimError
 from dhsim_tui.core.model.robot import UNITS, Robot
 from dhsim_tui.core.model.units import min_length
@@ -25,13 +25,13 @@ ROUND_TOL = MATCH_TOL
 LIMIT_ROUNDING = 1e-9
 
 
-def _round(
+def rounded_robot(
     robot: Robot,
     values: list[float],
     lengths: list[bool],
     units: str,
     build,
-    reference: _Reference,
+    reference: UrdfReference,
 ) -> tuple[Robot, list[float]]:
     """The robot with its numbers rounded (see the module's docstring), and
     each number's rounding tolerance (0: not rounded): all of them at the
@@ -73,7 +73,7 @@ def _round(
     return robot, eps
 
 
-def _limits(joint, scale: float) -> tuple[float, float]:
+def rounded_limits(joint, scale: float) -> tuple[float, float]:
     """The URDF joint's limits in degrees or robot units, each the shortest
     decimal within :data:`LIMIT_ROUNDING` of the exact conversion."""
     if joint.kind == "revolute":
@@ -114,7 +114,8 @@ def _rounded(values: list[float], lengths: list[bool], eps: list[float], units: 
     return out
 
 
-def _rounding_notes(eps: list[float]) -> list[str]:
+def rounding_notes(eps: list[float]) -> list[str]:
+    """The note on how far the numbers were rounded (none if none was)."""
     used = [e for e in eps if e]
     if not used:
         return []

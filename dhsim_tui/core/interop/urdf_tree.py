@@ -13,7 +13,8 @@ from dhsim_tui.core.interop.imported import quoted
 from dhsim_tui.core.model.errors import DhsimError, TipNeeded
 
 
-def _links(robot: ET.Element) -> list[str]:
+def link_names(robot: ET.Element) -> list[str]:
+    """Every ``<link>``'s name, in file order; each must be named and unique."""
     names: list[str] = []
     seen: set[str] = set()
     for element in robot.findall("link"):
@@ -39,7 +40,7 @@ class _Edge:
     element: ET.Element
 
 
-def _joints(robot: ET.Element, links: list[str]) -> list[_Edge]:
+def joint_edges(robot: ET.Element, links: list[str]) -> list[_Edge]:
     """Every ``<joint>``, each with a unique name and existing parent and child links."""
     known = set(links)
     joints = []
@@ -69,7 +70,7 @@ def _joints(robot: ET.Element, links: list[str]) -> list[_Edge]:
     return joints
 
 
-def _check_tree(links: list[str], joints: list[_Edge], parent_joint: dict[str, _Edge]) -> None:
+def check_tree(links: list[str], joints: list[_Edge], parent_joint: dict[str, _Edge]) -> None:
     """One parent per link, no cycle, one root."""
     seen: dict[str, str] = {}
     for edge in joints:
@@ -101,7 +102,9 @@ def _check_tree(links: list[str], joints: list[_Edge], parent_joint: dict[str, _
         )
 
 
-def _only_leaf(base: str, links: list[str], joints: list[_Edge]) -> str:
+def only_leaf(base: str, links: list[str], joints: list[_Edge]) -> str:
+    """The one leaf link below ``base`` (the chain's tip); :class:`TipNeeded`,
+    listing them, if there are several."""
     children: dict[str, list[str]] = {link: [] for link in links}
     for edge in joints:
         children[edge.parent].append(edge.child)
@@ -122,7 +125,8 @@ def _only_leaf(base: str, links: list[str], joints: list[_Edge]) -> str:
     return leaves[0]
 
 
-def _hint(links: list[str]) -> str:
+def links_hint(links: list[str]) -> str:
+    """`` (links: ...)``: the link names, for an error message."""
     return f" (links: {_listed(links)})"
 
 

@@ -1,4 +1,4 @@
-"""A URDF's XML, read with care (:func:`_parse`): a first streaming pass
+"""A URDF's XML, read with care (:func:`parse_urdf`): a first streaming pass
 (expat, which expands nothing) refuses a DOCTYPE or a declaration and stops
 past :data:`MAX_URDF_NODES` elements and attributes, past
 :data:`MAX_URDF_LINKS` links or joints and past :data:`MAX_URDF_DEPTH`
@@ -29,7 +29,7 @@ class _Refused(Exception):
     """Raised by the expat handlers to stop at a DOCTYPE or declaration."""
 
 
-def _parse(text: str) -> tuple[ET.Element, str | None]:
+def parse_urdf(text: str) -> tuple[ET.Element, str | None]:
     """The ``<robot>`` element and the first :data:`DHSIM_COMMENT` comment's
     text; no DOCTYPE, no entity, well-formed, within the caps."""
     text = text.removeprefix("\ufeff")

@@ -1,4 +1,5 @@
-"""Forward kinematics for standard and modified D-H chains (reference §1).
+"""Forward kinematics for standard and modified D-H chains (kinematics
+reference section 1, the D-H conventions).
 
 A chain is a product of 4×4 transforms, but most of their entries are
 constants: alpha is fixed, and 0° or ±90° more often than not. So
@@ -98,7 +99,7 @@ def _translate(axis: str, amount: str) -> list[str]:
     return [f"p{k} += {amount}*{axis}{k}" for k in range(3)]
 
 
-def _joint_lines(robot: Robot, index: int, q: str = "") -> list[str]:
+def joint_transform_lines(robot: Robot, index: int, q: str = "") -> list[str]:
     """Joint ``index``'s transform as lines on the state; its variable is ``q``."""
     joint = robot.joints[index]
     q = q or f"q{index}"
@@ -117,7 +118,7 @@ def _joint_lines(robot: Robot, index: int, q: str = "") -> list[str]:
     return rot_x + move_a + rot_z + move_d  # Rx(alpha) Tx(a) Rz(theta) Tz(d)
 
 
-def _constant_lines(matrix: np.ndarray) -> list[str]:
+def constant_transform_lines(matrix: np.ndarray) -> list[str]:
     """Post-multiply by a constant transform (the tool)."""
     r, t = matrix[:3, :3].tolist(), matrix[:3, 3].tolist()
     lines = [
@@ -136,7 +137,7 @@ def robot_base(robot: Robot) -> np.ndarray:
     return base_transform(robot.base_z, robot.base_x, robot.base_xyz, robot.base_rpy)
 
 
-def _start(robot: Robot) -> tuple[float, ...]:
+def start_state(robot: Robot) -> tuple[float, ...]:
     """The chain's starting state: frame 0's axes (columns) then its origin."""
     base = robot_base(robot)
     return (*(float(v) for v in base[:3, :3].T.reshape(-1)), *(float(v) for v in base[:3, 3]))
@@ -147,7 +148,7 @@ _STATE = f"({', '.join(NAMES)})"
 
 def _compile(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     """The chain compiled whole (see :mod:`~dhsim_tui.core.model.kinematics_codegen`)."""
-    return chain_function(robot, tool, _start(robot), record)
+    return chain_function(robot, tool, start_state(robot), record)
 
 
 #: a chain is compiled whole after this many calls; until then it runs as a
@@ -157,7 +158,7 @@ COMPILE_AFTER = 32
 
 
 @functools.lru_cache(maxsize=512)
-def _step(lines: tuple[str, ...]) -> Callable:
+def compile_step(lines: tuple[str, ...]) -> Callable:
     """``step(state, qi) -> state``: the chain's lines for one joint (or the
     tool), the same operations in the same order, so the same bits."""
     body = "".join(f"    {line}\n" for line in lines)
@@ -177,10 +178,10 @@ def _matrix(state: tuple[float, ...]) -> list[float]:
 
 def _stepwise(robot: Robot, tool: np.ndarray | None, record: bool) -> Callable:
     """The chain of :func:`_compile` as a loop over cached per-joint steps."""
-    start = _start(robot)
-    steps = [_step(tuple(_joint_lines(robot, i, "qi"))) for i in range(robot.dof)]
+    start = start_state(robot)
+    steps = [compile_step(tuple(joint_transform_lines(robot, i, "qi"))) for i in range(robot.dof)]
     if tool is not None:
-        steps.append(_step(tuple(_constant_lines(tool))))
+        steps.append(compile_step(tuple(constant_transform_lines(tool))))
     dof = robot.dof
     pack = packer(16 * (dof + 2) if record else 16)
 
@@ -210,7 +211,7 @@ _F64 = np.dtype(np.float64)
 _POSE = (4, 4)
 
 
-def _floats(q: np.ndarray) -> Sequence[float]:
+def as_floats(q: np.ndarray) -> Sequence[float]:
     """A float64 vector as a list (numpy scalars are slow in Python arithmetic)."""
     return q.tolist() if q.ndim == 1 and q.dtype == _F64 else q
 
@@ -276,7 +277,7 @@ class Kinematics:
     def state(self, q: Sequence[float]) -> tuple[float, ...]:
         """The end effector as 12 floats (x, y, z axes then origin): the fast path."""
         if q.__class__ is _ndarray:
-            q = _floats(q)
+            q = as_floats(q)
         try:
             return self._pose_chain(q)
         except (ValueError, TypeError) as exc:
@@ -293,7 +294,7 @@ class Kinematics:
     def position(self, q: Sequence[float]) -> tuple[float, float, float]:
         """The end effector's world XYZ."""
         if q.__class__ is _ndarray:
-            q = _floats(q)
+            q = as_floats(q)
         try:
             s = self._pose_chain(q)
         except (ValueError, TypeError) as exc:
@@ -303,7 +304,7 @@ class Kinematics:
     def pose(self, q: Sequence[float], out: np.ndarray | None = None) -> np.ndarray:
         """The end effector's 4×4 world transform ``B · T1 ··· Tn · Tool``."""
         if q.__class__ is _ndarray:
-            q = _floats(q)
+            q = as_floats(q)
         if out is None:
             out = _empty(_POSE)
         elif out.__class__ is not _ndarray or out.shape != _POSE or out.dtype is not _F64:
@@ -317,7 +318,7 @@ class Kinematics:
     def frames(self, q: Sequence[float], out: np.ndarray | None = None) -> np.ndarray:
         """World transforms of frames 0..n and the tool: shape (n + 2, 4, 4)."""
         if q.__class__ is _ndarray:
-            q = _floats(q)
+            q = as_floats(q)
         shape = self._frames_shape
         if out is None:
             out = _empty(shape)

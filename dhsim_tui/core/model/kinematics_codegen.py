@@ -2,7 +2,7 @@
 forward kinematics written as straight-line Python on named values.
 
 :class:`ChainWriter` goes through the chain joint by joint as the per-joint
-lines of ``kinematics._joint_lines`` do, but each entry of the frame becomes a
+lines of ``kinematics.joint_transform_lines`` do, but each entry of the frame becomes a
 local computed once: a ±90° turn is a renaming (its sign carried along, not
 computed), a product by 1 is no product, constants are computed now, and what
 nothing needs is left out. Only rewrites that round exactly alike, so the
@@ -87,9 +87,10 @@ def total(a: Term, b: Term) -> Term:
 
 
 class ChainWriter:
-    """Writes the chain of :func:`_joint_lines` (and the tool's) as lines
-    ``name = expression``, each value computed once: :attr:`state` holds the
-    values of x0..z2, p0..p2 as the chain goes, joint by joint."""
+    """Writes the chain of :func:`~.kinematics.joint_transform_lines` (and the
+    tool's) as lines ``name = expression``, each value computed once:
+    :attr:`state` holds the values of x0..z2, p0..p2 as the chain goes, joint
+    by joint."""
 
     def __init__(self, robot: Robot, tool: np.ndarray | None, start: Sequence[float]) -> None:
         self.robot, self._tool = robot, tool

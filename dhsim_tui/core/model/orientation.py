@@ -1,4 +1,5 @@
-"""Rotations and orientation read-outs (reference §4): OAT and roll-pitch-yaw.
+"""Rotations and orientation read-outs (kinematics reference section 4): OAT
+and roll-pitch-yaw.
 
 Everything takes and returns degrees; matrices are numpy arrays.
 """

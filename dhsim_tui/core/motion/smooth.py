@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-#: seconds a move takes (the issue: "about one second")
+#: seconds a move takes (about one second: quick, yet slow enough to follow)
 DURATION = 1.0
 
 

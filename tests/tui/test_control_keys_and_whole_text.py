@@ -12,49 +12,35 @@ from pilot_helpers import dialog_workers, frames_pass, press, settled, until
 from rich.cells import cell_len
 from textual import events
 
-from dhsim_tui.core import Joint, Robot, load_robot, save
+from dhsim_tui.core import Joint, Robot, load, load_robot, save
 from dhsim_tui.core.model.editing import set_pose
 from dhsim_tui.core.model.kinematics import read_out
 from dhsim_tui.tui.app import DhsimApp
-from dhsim_tui.tui.screens.control import ControlScreen
 from dhsim_tui.tui.screens.dialogs import short_path
+from dhsim_tui.tui.screens.editor import EditorScreen
 from dhsim_tui.tui.screens.help import HelpScreen
 from dhsim_tui.tui.screens.value_entry import ValueEntry
 from dhsim_tui.tui.widgets.pose_panel import PosePanel
 from dhsim_tui.tui.widgets.views_panel import ViewsPanel
+from tui.conftest import control, screen_strips, status_of, text_of
 
 SIZE = (80, 24)
-
-
-def make_app(name: str = "puma560", animate: bool = False, q=None) -> DhsimApp:
-    robot, path = load_robot(name)
-    if q is not None:
-        robot = set_pose(robot, "start", q)
-    return DhsimApp(robot, path, animate=animate)
-
-
-def screen_of(app: DhsimApp) -> ControlScreen:
-    assert isinstance(app.screen, ControlScreen)
-    return app.screen
+BRACKETS = "arm [/] [b]x"
 
 
 def lines(app: DhsimApp) -> list[str]:
     """The composed screen, a string per terminal row, as a person sees it."""
-    return [strip.text for strip in app.screen._compositor.render_strips()]
+    return text_of(app).split("\n")
 
 
 def region_text(app: DhsimApp, widget) -> list[str]:
     """The rows of the screen a widget covers, cropped to it."""
     region = widget.region
-    strips = app.screen._compositor.render_strips()
+    strips = screen_strips(app)
     return [
         strips[y].crop(region.x, region.right).text
         for y in range(region.y, min(region.bottom, len(strips)))
     ]
-
-
-def status_text(app: DhsimApp) -> str:
-    return str(app.screen.query_one("#status").render())
 
 
 def squeeze(text: str) -> str:
@@ -64,7 +50,7 @@ def squeeze(text: str) -> str:
 def assert_status_whole(app: DhsimApp) -> str:
     """The status message, every character of it, is on the screen (wrapped
     lines joined), inside the side panel, above the footer."""
-    message = status_text(app)
+    message = status_of(app)
     status = app.screen.query_one("#status")
     shown = region_text(app, status)
     assert message, "expected a message"
@@ -76,7 +62,7 @@ def assert_status_whole(app: DhsimApp) -> str:
 async def go_start(pilot) -> None:
     names = pilot.app.robot.pose_names
     await press(pilot, *["p"] * len(names))
-    assert screen_of(pilot.app).q == pilot.app.robot.pose("start")
+    assert control(pilot.app).q == pilot.app.robot.pose("start")
 
 
 @pytest.fixture
@@ -89,18 +75,20 @@ def slow_motion(monkeypatch):
 async def th1_to_90_then(pilot, *keys: str) -> None:
     """Th1 to 90 deg with 45-degree steps, then start a smooth move home."""
     await press(pilot, *["right_square_bracket"] * 3, "right", "right")
-    assert screen_of(pilot.app).q[0] == 90.0
+    assert control(pilot.app).q[0] == 90.0
     await press(pilot, "h", *keys)
 
 
 # -- step 11: only moving keys (and escape) interrupt a smooth move ------------------
 
 
-async def test_view_readout_and_help_keys_leave_a_smooth_move_running(slow_motion):
-    app = make_app(animate=True)
+async def test_view_readout_and_help_keys_leave_a_smooth_move_running(
+    slow_motion, control_app, status
+):
+    app = control_app(animate=True)
     async with app.run_test(size=SIZE) as pilot:
         await th1_to_90_then(pilot, "1", "2", "tab", "v", "3", "up", "down", "left_square_bracket")
-        screen = screen_of(app)
+        screen = control(app)
         assert screen.moving
         assert (
             screen.query_one(ViewsPanel).selected == 2 and screen.readout == "rpy"
@@ -114,7 +102,7 @@ async def test_view_readout_and_help_keys_leave_a_smooth_move_running(slow_motio
         assert screen.moving  # still on its way home
         await press(pilot, "escape")
         assert not screen.moving
-        assert screen.q[0] > 0.0 and status_text(app) == "stopped"
+        assert screen.q[0] > 0.0 and status(app) == "stopped"
 
 
 @pytest.mark.parametrize(
@@ -122,11 +110,11 @@ async def test_view_readout_and_help_keys_leave_a_smooth_move_running(slow_motio
     [("escape",), ("right",), ("shift+left",), ("enter",), ("c", "right")],
     ids=["escape", "step", "big-step", "enter-value", "cartesian-step"],
 )
-async def test_keys_that_move_the_arm_stop_a_smooth_move(keys, slow_motion):
-    app = make_app(animate=True)
+async def test_keys_that_move_the_arm_stop_a_smooth_move(keys, slow_motion, control_app):
+    app = control_app(animate=True)
     async with app.run_test(size=SIZE) as pilot:
         await th1_to_90_then(pilot)
-        screen = screen_of(app)
+        screen = control(app)
         await until(pilot, lambda: screen.q[0] < 90.0, "the move home under way")
         assert screen.moving
         await press(pilot, *keys)
@@ -140,8 +128,8 @@ async def test_keys_that_move_the_arm_stop_a_smooth_move(keys, slow_motion):
         assert not screen.moving
 
 
-async def test_footer_shows_whether_smooth_motion_is_on():
-    app = make_app(animate=True)
+async def test_footer_shows_whether_smooth_motion_is_on(control_app):
+    app = control_app(animate=True)
     async with app.run_test(size=SIZE) as pilot:
         await until(pilot, lambda: "m Motion" in lines(app)[-1], "the footer")
         footer = lines(app)[-1]
@@ -151,7 +139,7 @@ async def test_footer_shows_whether_smooth_motion_is_on():
         footer = lines(app)[-1]
         assert "m Motion off" in footer and "Motion on" not in footer
         await press(pilot, "h")  # off: a move lands at once
-        assert not screen_of(app).moving
+        assert not control(app).moving
         await press(pilot, "c")  # and it stays shown in Cartesian mode
         await until(pilot, lambda: "Move tool" in lines(app)[-1], "the Cartesian footer")
         assert "m Motion off" in lines(app)[-1]
@@ -179,7 +167,7 @@ def shown_pose(app: DhsimApp) -> dict[str, float]:
 
 
 def expected_pose(app: DhsimApp) -> dict[str, float]:
-    pose = read_out(app.robot.kinematics.pose(screen_of(app).q))
+    pose = read_out(app.robot.kinematics.pose(control(app).q))
     return {
         **{name: round(v, 2) + 0.0 for name, v in zip("XYZ", pose.xyz, strict=True)},
         **{name: round(v, 2) + 0.0 for name, v in zip("OAT", pose.oat, strict=True)},
@@ -190,7 +178,7 @@ async def test_500_quick_presses_all_count_and_the_panel_shows_the_result():
     slide = Robot("slide", (Joint("prismatic", 0.0, 0.0, 100.0, 0.0, -1000.0, 1000.0),))
     app = DhsimApp(slide, None, animate=False)
     async with app.run_test(size=SIZE) as pilot:
-        screen = screen_of(app)
+        screen = control(app)
         before = screen.redraws
         await burst(pilot, "right", 500)
         assert screen.q == (500.0,)  # 1 mm steps: every one of them
@@ -201,23 +189,23 @@ async def test_500_quick_presses_all_count_and_the_panel_shows_the_result():
         assert "500.00 mm" in str(app.screen.query("JointRow")[0].render())
 
 
-async def test_a_burst_past_the_limit_stops_there_and_says_so():
-    app = make_app()
+async def test_a_burst_past_the_limit_stops_there_and_says_so(control_app, status):
+    app = control_app()
     async with app.run_test(size=SIZE) as pilot:
         await burst(pilot, "right", 500)  # 1 deg steps, Th1 -160..160
-        assert screen_of(app).q[0] == 160.0
-        assert "Th1 is at its max limit, 160 deg" in status_text(app)
+        assert control(app).q[0] == 160.0
+        assert "Th1 is at its max limit, 160 deg" in status(app)
         assert shown_pose(app) == expected_pose(app)
 
 
-async def test_a_burst_of_cartesian_steps_all_count():
-    app = make_app(q=(-20.0, 50.0, -170.0, 10.0, 40.0, 0.0))
+async def test_a_burst_of_cartesian_steps_all_count(control_app):
+    app = control_app(q=(-20.0, 50.0, -170.0, 10.0, 40.0, 0.0))
     async with app.run_test(size=SIZE) as pilot:
         await go_start(pilot)
-        start = app.robot.kinematics.position(screen_of(app).q)
+        start = app.robot.kinematics.position(control(app).q)
         await press(pilot, "c")
         await burst(pilot, "right", 40)  # 1 mm steps along X
-        now = app.robot.kinematics.position(screen_of(app).q)
+        now = app.robot.kinematics.position(control(app).q)
         assert now[0] - start[0] == pytest.approx(40.0, abs=1e-3)
         shown = str(app.screen.query_one("#cartesian").render())
         assert f"{now[0]:.2f}" in shown
@@ -226,14 +214,14 @@ async def test_a_burst_of_cartesian_steps_all_count():
 # -- step 13: Cartesian mode and the status line at 80x24 --------------------------
 
 
-async def test_cartesian_mode_at_80x24_shows_values_one_marker_and_arrow_labels():
-    app = make_app()
+async def test_cartesian_mode_at_80x24_shows_values_one_marker_and_arrow_labels(control_app):
+    app = control_app()
     async with app.run_test(size=SIZE) as pilot:
         await press(pilot, "p", "p", "c", "down")
         await until(pilot, lambda: "↑↓ Axis" in lines(app)[-1], "the Cartesian footer")
         text = "\n".join(lines(app))
         assert text.count("▶") == 1  # only the Cartesian row's
-        pose = read_out(app.robot.kinematics.pose(screen_of(app).q))
+        pose = read_out(app.robot.kinematics.pose(control(app).q))
         rows = region_text(app, app.screen.query_one("#cartesian"))[1:-1]
         assert len(rows) == 6
         for row, value in zip(rows, (*pose.xyz, *pose.rpy), strict=True):
@@ -249,8 +237,8 @@ async def test_cartesian_mode_at_80x24_shows_values_one_marker_and_arrow_labels(
         assert "\n".join(lines(app)).count("▶") == 1  # the joint's, back again
 
 
-async def test_pitch_label_keeps_clear_of_the_border():
-    app = make_app()
+async def test_pitch_label_keeps_clear_of_the_border(control_app):
+    app = control_app()
     async with app.run_test(size=SIZE) as pilot:
         await press(pilot, "v")
         await until(pilot, lambda: any("pitch" in line for line in lines(app)), "the rpy read-out")
@@ -259,8 +247,8 @@ async def test_pitch_label_keeps_clear_of_the_border():
 
 
 @pytest.mark.parametrize("width", [80, 120, 160])
-async def test_footer_fits_in_both_modes(width):
-    app = make_app(animate=True)
+async def test_footer_fits_in_both_modes(width, control_app):
+    app = control_app(animate=True)
     async with app.run_test(size=(width, 24)) as pilot:
         steps = (
             ((), ("Motion on", "Step")),
@@ -304,28 +292,30 @@ CARTESIAN_FAILURES = [
 
 
 @pytest.mark.parametrize(("name", "q", "keys"), CARTESIAN_FAILURES)
-async def test_cartesian_failure_reasons_are_shown_whole_at_80x24(name, q, keys):
-    app = make_app(name, q=q)
+async def test_cartesian_failure_reasons_are_shown_whole_at_80x24(
+    name, q, keys, control_app, status
+):
+    app = control_app(name, q=q)
     async with app.run_test(size=SIZE) as pilot:
         if q is not None:
             await go_start(pilot)
-        before = screen_of(app).q
+        before = control(app).q
         await press(pilot, *keys)
         # a typed value is applied once its dialog has closed: wait for the answer
-        await until(pilot, lambda: re.match(r"R?[XYZxyz]: ", status_text(app)), "the reason")
-        assert screen_of(app).q == before  # nothing moved...
+        await until(pilot, lambda: re.match(r"R?[XYZxyz]: ", status(app)), "the reason")
+        assert control(app).q == before  # nothing moved...
         message = assert_status_whole(app)  # ...and the reason is there, all of it
         assert re.match(r"R?[XYZxyz]: ", message)
 
 
-async def test_joint_limit_message_is_shown_whole():
-    app = make_app("stanford")
+async def test_joint_limit_message_is_shown_whole(control_app):
+    app = control_app("stanford")
     async with app.run_test(size=SIZE) as pilot:
         await press(pilot, "down", "down", "left")  # d3 is home at its minimum
         assert "limit" in assert_status_whole(app)
 
 
-async def test_a_failed_save_says_why_first_and_shows_all_of_it(tmp_path, monkeypatch):
+async def test_a_failed_save_says_why_first_and_shows_all_of_it(tmp_path, monkeypatch, status):
     import os
 
     deep = tmp_path.joinpath(*["a-long-folder-name"] * 8)
@@ -341,7 +331,7 @@ async def test_a_failed_save_says_why_first_and_shows_all_of_it(tmp_path, monkey
     app = DhsimApp(load_robot(str(file))[0], file, animate=False)
     async with app.run_test(size=SIZE) as pilot:
         await press(pilot, "right", "P", "ctrl+u", *"spot", "enter")
-        await until(pilot, lambda: status_text(app).startswith("not saved:"), "the failure")
+        await until(pilot, lambda: status(app).startswith("not saved:"), "the failure")
         message = assert_status_whole(app)
         assert message.startswith("not saved:")
         assert "pose spot is kept in memory" in message
@@ -403,8 +393,8 @@ def assert_fits(widget) -> None:
 
 
 @pytest.mark.parametrize("name", ["puma560", "stanford", "panda", "planar2", "gantry"])
-async def test_side_panel_content_fits_at_80x24(name):
-    app = make_app(name)
+async def test_side_panel_content_fits_at_80x24(name, control_app):
+    app = control_app(name)
     async with app.run_test(size=SIZE) as pilot:
         await press(pilot, "right", "down", "left")
         for keys in ((), ("v",), ("v",), ("v", "c"), ("down", "down", "down")):
@@ -412,10 +402,32 @@ async def test_side_panel_content_fits_at_80x24(name):
             # a key that changes the bindings recomposes the footer: it is
             # empty for a moment, then whole
             await until(pilot, lambda: lines(app)[-1].strip(), "the footer")
-            screen = screen_of(app)
+            screen = control(app)
             panel = "#cartesian" if screen.cartesian else "#pose"  # the one shown at 80x24
             for widget in [*app.screen.query("JointRow"), app.screen.query_one(panel)]:
                 if widget.display:
                     assert_fits(widget)
             footer = lines(app)[-1].rstrip()
             assert footer.endswith("q Quit")
+
+
+async def test_square_brackets_in_names_and_typed_text_are_shown_literally(
+    tmp_path, status, screen_text
+):
+    robot = set_pose(Robot(BRACKETS, (Joint(a=100.0), Joint(a=50.0))), "[/p]", (1.0, 2.0))
+    file = tmp_path / "odd.toml"
+    save(robot, file)
+    app = DhsimApp(load(file), file, animate=False)
+    async with app.run_test(size=(80, 24)) as pilot:
+        await press(pilot, "p")
+        assert "[/p]" in status(app)
+        assert BRACKETS in screen_text(app)  # what a person sees, brackets and all
+        await press(pilot, "enter", "ctrl+u", "[", "/", "enter")
+        assert isinstance(app.screen, ValueEntry)
+        assert "'[/' is not a number" in str(app.screen.query_one("#error").render())
+        await press(pilot, "escape", "question_mark")
+        assert isinstance(app.screen, HelpScreen)
+        await press(pilot, "escape", "e")
+        assert isinstance(app.screen, EditorScreen)
+        await press(pilot, "tab", "a", "ctrl+u", *"[/x]", "enter")
+        assert "[/x]" in app.screen.robot.pose_names

@@ -40,6 +40,7 @@ from dhsim_tui.tui.screens.editor_changes import describe_change
 from dhsim_tui.tui.screens.editor_table import JOINT_COLUMNS, joint_labels, number
 from dhsim_tui.tui.screens.open_robot import OpenRobot
 from dhsim_tui.tui.screens.value_entry import ValueEntry
+from tui.conftest import editor, robot_text, text_of
 
 BOX = "│╭╮╰╯─┃━▎▊▔▁"
 
@@ -50,22 +51,9 @@ def in_tmp(tmp_path, monkeypatch):
     return tmp_path
 
 
-def editor_app(robot=None, path=None, start="edit") -> DhsimApp:
-    if robot is None:
-        robot, path = load_robot("puma560")
-    return DhsimApp(robot, path, start=start, animate=False)
-
-
-def editor(app: DhsimApp) -> EditorScreen:
-    for screen in reversed(app.screen_stack):
-        if isinstance(screen, EditorScreen):
-            return screen
-    raise AssertionError("no editor")
-
-
 def screen_lines(app: DhsimApp) -> list[str]:
     """The screen as the terminal would show it, one string per row."""
-    return [strip.text for strip in app.screen._compositor.render_strips()]
+    return text_of(app).split("\n")
 
 
 def region_text(app: DhsimApp, widget) -> str:
@@ -112,7 +100,7 @@ def test_numbers_are_never_shortened():
         assert float(number(value)) == value
 
 
-async def test_cells_show_the_whole_value_after_each_edit():
+async def test_cells_show_the_whole_value_after_each_edit(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -136,7 +124,7 @@ async def test_cells_show_the_whole_value_after_each_edit():
         assert widths["a\n(mm)"] == len("70.125")
 
 
-async def test_ur5_in_metres_shows_every_digit():
+async def test_ur5_in_metres_shows_every_digit(editor_app):
     robot, path = load_robot("ur5")
     app = editor_app(robot, path)
     async with app.run_test(size=(80, 24)) as pilot:
@@ -150,7 +138,7 @@ async def test_ur5_in_metres_shows_every_digit():
         assert " 0.089459 " in "\n".join(screen_lines(app))
 
 
-async def test_a_wide_table_scrolls_instead_of_cutting():
+async def test_a_wide_table_scrolls_instead_of_cutting(editor_app):
     robot = set_joint_field(new_robot("wide", 3), 0, "a", 123456.78901234)
     robot = set_joint_field(robot, 0, "d", -98765.4321012)
     app = editor_app(robot, None)
@@ -166,7 +154,7 @@ async def test_a_wide_table_scrolls_instead_of_cutting():
 
 
 @pytest.mark.parametrize("size", [(80, 24), (120, 36)])
-async def test_the_unsaved_changes_question_is_shown_whole(size, in_tmp):
+async def test_the_unsaved_changes_question_is_shown_whole(size, in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     save(new_robot("a robot with a rather long name, as people write them", 2), file)
     app = editor_app(load(file), file)
@@ -184,7 +172,7 @@ async def test_the_unsaved_changes_question_is_shown_whole(size, in_tmp):
         assert "s save · d discard · escape stay" in text
 
 
-async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch):
+async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch, editor_app):
     folder = in_tmp
     while len(str(folder)) < 200:
         folder = folder / "a_rather_long_folder_name"
@@ -215,7 +203,7 @@ async def test_a_failed_save_with_a_long_path_says_why_first(in_tmp, monkeypatch
 # -- step 10: type-ahead -------------------------------------------------------------
 
 
-async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatch):
+async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatch, editor_app):
     """ctrl+u - 1 4 enter, arriving while the dialog is being built (nothing
     in it has the focus yet), set -14: none lost, none out of order."""
     app = editor_app()
@@ -245,7 +233,7 @@ async def test_keys_typed_while_the_dialog_opens_are_applied_in_order(monkeypatc
 # -- step 12: a burst of keys ends on the right robot --------------------------------
 
 
-async def test_after_a_burst_the_table_and_preview_show_the_final_robot():
+async def test_after_a_burst_the_table_and_preview_show_the_final_robot(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -270,7 +258,7 @@ async def test_after_a_burst_the_table_and_preview_show_the_final_robot():
 # -- step 13: small things -----------------------------------------------------------
 
 
-async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
+async def test_footer_shows_the_way_back_and_q_says_how_to_leave(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -282,7 +270,7 @@ async def test_footer_shows_the_way_back_and_q_says_how_to_leave():
         assert status_shown_whole(app) == QUIT_HINT
 
 
-async def test_column_headers_show_units():
+async def test_column_headers_show_units(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -306,7 +294,7 @@ def test_limit_units_follow_the_joint_types():
     )
 
 
-async def test_undo_and_redo_say_what_they_changed():
+async def test_undo_and_redo_say_what_they_changed(editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -344,7 +332,7 @@ def test_describe_change_names_each_kind_of_edit():
 # -- step 7 and 8: file text and odd paths -------------------------------------------
 
 
-async def test_file_names_with_escape_sequences_are_shown_escaped(in_tmp):
+async def test_file_names_with_escape_sequences_are_shown_escaped(in_tmp, editor_app):
     (in_tmp / "robots").mkdir()
     evil = in_tmp / "robots" / "a\x1b[2J\x1b]0;owned\x07\u202e.toml"
     save(new_robot("fine", 2), evil)
@@ -370,7 +358,7 @@ async def test_file_names_with_escape_sequences_are_shown_escaped(in_tmp):
         assert not any(ord(c) < 32 or c == "\u202e" for c in line)
 
 
-async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch):
+async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch, editor_app):
     (in_tmp / "robots").mkdir()
     real_iterdir = Path.iterdir
 
@@ -391,7 +379,7 @@ async def test_unreadable_robots_folder_is_a_message(in_tmp, monkeypatch):
         assert app.screen.query_one("OptionList").option_count > 0  # the bundled ones
 
 
-async def test_a_path_longer_than_255_bytes_is_a_message(in_tmp):
+async def test_a_path_longer_than_255_bytes_is_a_message(in_tmp, editor_app):
     app = editor_app()
     async with app.run_test(size=(80, 24)) as pilot:
         await started(pilot)
@@ -438,22 +426,8 @@ async def test_a_deleted_working_folder_is_a_message(in_tmp, monkeypatch):
 # -- step 3: never overwrite what was not read ---------------------------------------
 
 
-COMMENTED = """# my arm: keep this comment
-name = "arm"
-units = "mm"
-
-[[joints]]
-theta = 0.0
-d = 0.0
-a = 100.0  # the upper arm
-alpha = 0.0
-
-[[joints]]
-theta = 0.0
-d = 0.0
-a = 50.0
-alpha = 0.0
-"""
+#: the commented two-link arm, without its [poses] table
+COMMENTED = robot_text("commented_arm").replace("[poses]\nhome = [0.0, 0.0]\n\n", "")
 
 
 async def _changed_on_disk(in_tmp, pilot) -> tuple[Path, bytes]:
@@ -473,7 +447,7 @@ async def _changed_on_disk(in_tmp, pilot) -> tuple[Path, bytes]:
 
 
 @pytest.mark.parametrize("answer", ["o", "r", "c"])
-async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
+async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
@@ -503,7 +477,9 @@ async def test_external_change_asks_overwrite_reload_or_cancel(answer, in_tmp):
 
 
 @pytest.mark.parametrize("keep", ["mine", "theirs"])
-async def test_reload_asks_about_a_value_both_changed_naming_it_and_both_values(keep, in_tmp):
+async def test_reload_asks_about_a_value_both_changed_naming_it_and_both_values(
+    keep, in_tmp, editor_app
+):
     """The trial's case: I set joint 1 max to 150, the file's other editor
     set it to 155 and joint 5 min to -120. Reload asks about joint 1 max
     only; ctrl+z after it never reverts the other person's change."""
@@ -535,7 +511,7 @@ async def test_reload_asks_about_a_value_both_changed_naming_it_and_both_values(
         assert editor(app).robot == load(file)  # back to the file's, not before it
 
 
-async def test_overwrite_keeps_the_comments(in_tmp):
+async def test_overwrite_keeps_the_comments(in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
@@ -549,7 +525,7 @@ async def test_overwrite_keeps_the_comments(in_tmp):
     assert load(file).joints[0].a == 111.0
 
 
-async def test_read_only_file_is_refused_and_save_as_works(in_tmp):
+async def test_read_only_file_is_refused_and_save_as_works(in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     file.write_text(COMMENTED)
     file.chmod(0o444)
@@ -580,7 +556,7 @@ async def test_read_only_file_is_refused_and_save_as_works(in_tmp):
     assert file.read_bytes() == before
 
 
-async def test_save_as_key_writes_a_new_file_and_keeps_the_old(in_tmp):
+async def test_save_as_key_writes_a_new_file_and_keeps_the_old(in_tmp, editor_app):
     file = in_tmp / "arm.toml"
     file.write_text(COMMENTED)
     app = editor_app(load(file), file)
