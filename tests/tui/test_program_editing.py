@@ -29,7 +29,7 @@ def steps(app, name: str = "p") -> tuple[Step, ...]:
     return app.robot.program(name).steps
 
 
-def app_with(*programs: Program, size_robot=None) -> DhsimApp:
+def app_with(*programs: Program) -> DhsimApp:
     robot = replace(load_robot("puma560")[0], programs=programs)
     return DhsimApp(robot, animate=False)
 
@@ -177,3 +177,38 @@ async def test_the_cartesian_key_legend_never_runs_two_hints_together():
         assert "frameh" not in text and "world/tool frame" in text
         for line in text.splitlines()[1:]:  # two hints a line: a space at least between them
             assert "  " in line.strip() or len(line.split()) <= 3, line
+
+
+async def test_a_value_the_robot_would_refuse_is_refused_in_its_dialog():
+    # the wait fits 0..3600 s but not the program's hour; the speed is a number
+    # but under the floor: each said under the input, the dialog kept, nothing changed
+    app = app_with(Program("p", (Step("wait", seconds=3000.0), Step("linear", UP))))
+    async with app.run_test(size=(100, 30)) as pilot:
+        await started(pilot)
+        await press(pilot, "g", "D")
+        await type_in(pilot, "700")
+        error = str(app.screen.query_one("#error").render())
+        assert "at most 3600 s" in error and "step 2" in error
+        await press(pilot, "escape")
+        await press(pilot, "down", "S")
+        await type_in(pilot, "0.001")
+        assert "slower than any program needs" in str(app.screen.query_one("#error").render())
+        await press(pilot, "escape")
+        assert steps(app) == (Step("wait", seconds=3000.0), Step("linear", UP))
+
+
+@pytest.mark.parametrize("ascii", [False, True])
+def test_the_compact_read_out_fits_the_side_panel_whatever_the_angles(ascii):
+    from dhsim_tui.tui.widgets.pose_panel import pose_text
+
+    puma = load_robot("puma560")[0]
+    end = read_out(puma.kinematics.pose((-160.0, 225.0, -225.0, 170.0, -100.0, 266.0)))
+    for readout in ("oat", "rpy"):
+        text = str(pose_text(end, readout, "mm", ascii=ascii, compact=True))
+        lines = text.splitlines()
+        # the side panel is 38 wide at 80x24: 36 inside its border
+        assert len(lines) == 2 and all(len(line) <= 36 for line in lines), lines
+        angles = end.oat if readout == "oat" else end.rpy
+        shown = [float(v) for v in lines[1].split()[1:6:2]]
+        assert np.allclose(shown, angles, atol=0.006)
+        assert np.allclose([float(v) for v in lines[0].split()[1:6:2]], end.xyz, atol=0.006)

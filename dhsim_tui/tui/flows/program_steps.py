@@ -12,6 +12,9 @@ branch.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import replace
+
 import numpy as np
 from textual.app import App
 
@@ -36,25 +39,35 @@ from dhsim_tui.tui.screens.value_entry import ValueEntry
 
 #: what a speed dialog takes for "the default"
 DEFAULT_WORDS = ("", "default")
+#: a step's check against the whole robot (a program too long, a name taken...):
+#: raises DhsimError, shown under the input, so the dialog stays until it fits
+Fits = Callable[[Step], object] | None
 
 
-async def ask_wait(app: App, seconds: float = 1.0) -> float | None:
-    """A wait's length in seconds."""
+def _fitting(step: Step, fits: Fits) -> Step:
+    if fits is not None:
+        fits(step)
+    return step
+
+
+async def ask_wait(app: App, seconds: float = 1.0, fits: Fits = None) -> float | None:
+    """A wait's length in seconds (``fits``: the wait step's check in its program)."""
 
     def check(text: str) -> float:
         value = editing.parse_number(text, "wait")
         if not 0 <= value <= MAX_WAIT:
             raise DhsimError(f"wait: {shown_number(value)} s is outside 0..{MAX_WAIT:g} s")
+        _fitting(Step("wait", seconds=value), fits)
         return value
 
     hint = f"seconds the arm holds its pose, 0 to {MAX_WAIT:g} · enter sets · escape cancels"
     return await app.push_screen_wait(ValueEntry("wait (s)", shown_number(seconds), hint, check))
 
 
-async def ask_speed(app: App, robot: Robot, step: Step) -> Step | None:
+async def ask_speed(app: App, robot: Robot, step: Step, fits: Fits = None) -> Step | None:
     """The step with a new speed (a wait: new seconds); empty: the default."""
     if step.is_wait:
-        seconds = await ask_wait(app, step.seconds)
+        seconds = await ask_wait(app, step.seconds, fits)
         return None if seconds is None else Step("wait", seconds=seconds)
     if step.move == "joint":
         title, unit = "joint move speed (% of top speed)", "%"
@@ -65,17 +78,19 @@ async def ask_speed(app: App, robot: Robot, step: Step) -> Step | None:
 
     def check(text: str) -> Step:
         if text.strip().lower() in DEFAULT_WORDS:
-            return Step(step.move, step.to)
+            return _fitting(Step(step.move, step.to), fits)
         value = editing.parse_number(text, "speed")
         if value <= 0 or (step.move == "joint" and value > 100):
             raise DhsimError(f"speed: {shown_number(value)} {unit} is out of range ({hint})")
-        return Step(step.move, step.to, value)
+        return _fitting(Step(step.move, step.to, value), fits)
 
     now = "" if step.speed is None else shown_number(step.speed)
     return await app.push_screen_wait(ValueEntry(title, now, hint + " · escape cancels", check))
 
 
-async def ask_target(app: App, robot: Robot, program: Program, index: int) -> Step | None:
+async def ask_target(
+    app: App, robot: Robot, program: Program, index: int, fits: Fits = None
+) -> Step | None:
     """The step with new target numbers: joint values, or for a linear move
     (by choice) the tool pose, XYZ and OAT, solved from the step's joints."""
     step = program.steps[index]
@@ -96,7 +111,8 @@ async def ask_target(app: App, robot: Robot, program: Program, index: int) -> St
 
         def check_joints(text: str) -> Step:
             values = editing.parse_numbers(text, robot.dof, "target")
-            return Step(step.move, check_values(robot, values, "target"), step.speed)
+            changed = Step(step.move, check_values(robot, values, "target"), step.speed)
+            return _fitting(changed, fits)
 
         return await app.push_screen_wait(
             ValueEntry(
@@ -117,7 +133,8 @@ async def ask_target(app: App, robot: Robot, program: Program, index: int) -> St
         if not result.success:
             raise DhsimError(f"tool pose: the arm can't get there ({result.reason})")
         values = tuple(round(v, 6) for v in result.q)
-        return Step(step.move, check_values(robot, values, "tool pose"), step.speed)
+        changed = Step(step.move, check_values(robot, values, "tool pose"), step.speed)
+        return _fitting(changed, fits)
 
     numbers = [*end.xyz, *end.oat]
     return await app.push_screen_wait(
@@ -134,7 +151,9 @@ async def ask_program_name(app: App, robot: Robot, name: str) -> tuple[Program, 
     """The robot's programs with program ``name`` renamed."""
 
     def check(text: str) -> tuple[Program, ...]:
-        return renamed_program(robot.programs, name, text.strip())
+        programs = renamed_program(robot.programs, name, text.strip())
+        replace(robot, programs=programs)  # the robot's own checks: a name's characters, length
+        return programs
 
     return await app.push_screen_wait(
         ValueEntry("rename the program", name, "a new name · enter sets · escape cancels", check)

@@ -202,11 +202,20 @@ class ProgramPlayer:
         self.pause()
         self.host.run_worker(flow, group="modal", exclusive=True)
 
+    def _fits(self, change) -> Callable[[Step], object]:
+        """A dialog's check that the program with ``change(step)`` makes a
+        valid robot (raises what the core says; the dialog shows it)."""
+        return lambda step: replace(
+            self.host.robot, programs=with_program(self.host.robot.programs, change(step))
+        )
+
     async def _add_wait(self, program: Program, index: int) -> None:
-        seconds = await ask_wait(self.host.app)
+        at = index if program.steps else None
+        seconds = await ask_wait(
+            self.host.app, fits=self._fits(lambda step: with_step(program, step, at))
+        )
         if seconds is None:
             return
-        at = index if program.steps else None
         number = (at + 2) if at is not None else 1
         step = Step("wait", seconds=seconds)
         if self._set(with_step(program, step, at), f"step {number}: {step.describe()}"):
@@ -214,10 +223,11 @@ class ProgramPlayer:
 
     async def _change_step(self, program: Program, index: int, what: str) -> None:
         app, robot = self.host.app, self.host.robot
+        fits = self._fits(lambda step: with_changed_step(program, index, step))
         if what == "speed" or program.steps[index].is_wait:  # a wait's number: its seconds
-            step = await ask_speed(app, robot, program.steps[index])
+            step = await ask_speed(app, robot, program.steps[index], fits)
         else:
-            step = await ask_target(app, robot, program, index)
+            step = await ask_target(app, robot, program, index, fits)
         if step is not None:
             changed = with_changed_step(program, index, step)
             self._set(changed, f"step {index + 1}: {step.describe()}")

@@ -64,7 +64,8 @@ def pose_text(
         angles = pose.oat if readout == "oat" else pose.rpy
         for i, (name, value) in enumerate(zip(names, angles, strict=True)):
             text.append(f"{name} " if i == 0 else f" {name} ", style="bold")
-            text.append(f"{_number(value, 2, 7)}{degree}")
+            text.append(_number(value, 2, 7))
+        text.append(f" {degree}")  # once, as the unit of the line above: fits "deg" too
         return text
     if readout == ALL_READOUTS:
         text.append_text(pose_text(pose, "oat", units, ascii))
