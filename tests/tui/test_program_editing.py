@@ -212,3 +212,19 @@ def test_the_compact_read_out_fits_the_side_panel_whatever_the_angles(ascii):
         shown = [float(v) for v in lines[1].split()[1:6:2]]
         assert np.allclose(shown, angles, atol=0.006)
         assert np.allclose([float(v) for v in lines[0].split()[1:6:2]], end.xyz, atol=0.006)
+
+
+async def test_a_click_selects_the_step_under_the_pointer_when_scrolled():
+    many = Program("p", tuple(Step("wait", seconds=float(i + 1)) for i in range(20)))
+    app = app_with(many)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await started(pilot)
+        panel = app.screen.query_one(ProgramPanel)
+        await press(pilot, "g", *["down"] * 19)
+        top = 20 - panel.visible  # the last steps shown
+        # offsets count from the panel's border: row 2 is the second step shown
+        await pilot.click(ProgramPanel, offset=(6, 2))
+        await until(pilot, lambda: panel.selected == top + 1, "the clicked step selected")
+        await pilot.click(ProgramPanel, offset=(6, 0))  # on the border: nothing
+        await pilot.pause()
+        assert panel.selected == top + 1

@@ -258,8 +258,11 @@ class ProgramPanel(TextPanel, can_focus=True):
         """A click on a step selects it."""
         program = self._shown[0]
         self.focus()
-        index = self._top + event.y
-        if program is not None and 0 <= event.y < self.visible and index < len(program.steps):
+        inside = event.get_content_offset(self)  # inside the border (None: on it)
+        if program is None or inside is None:
+            return
+        index = self._top + inside.y
+        if 0 <= inside.y < self.visible and index < len(program.steps):
             self.selected = index
 
     def _on_hide(self, event: events.Hide) -> None:
